@@ -1,0 +1,18 @@
+// The exit codes of the `pge` command (also listed in `pge --help` and README.md).
+#pragma once
+
+namespace pge::cli {
+
+inline constexpr int kExitOk = 0;           // the job ran and everything held
+inline constexpr int kExitInternal = 1;     // an unexpected internal error (a bug: please report)
+inline constexpr int kExitUsage = 2;        // bad command line
+inline constexpr int kExitBadScene = 3;     // a scene file is unreadable, malformed or invalid
+inline constexpr int kExitStorm = 4;        // a run stopped on an event storm
+inline constexpr int kExitUnsupported = 5;  // a valid scene uses something not simulated yet
+inline constexpr int kExitOutput = 6;       // an output file could not be written
+
+inline constexpr const char* kExitCodeHelp =
+    "Exit codes: 0 ok; 1 internal error; 2 bad command line; 3 bad scene file;\n"
+    "  4 event storm; 5 scene uses an unsupported feature; 6 cannot write output.";
+
+}  // namespace pge::cli

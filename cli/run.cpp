@@ -1,0 +1,271 @@
+#include "run.hpp"
+
+#include "exit_codes.hpp"
+#include "trace.hpp"
+
+#include "pge/constants.hpp"
+#include "pge/scene_io.hpp"
+#include "pge/world.hpp"
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace pge::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Above this many bodies the O(n^2) end-of-run overlap scan is skipped (it would dominate).
+constexpr std::size_t kFullOverlapScanMaxBodies = 20000;
+
+struct Measures {
+  double kinetic = 0;
+  double potential = 0;
+  Vec2d momentum;
+};
+
+template <class T> Measures measure(const World<T>& w) {
+  return {to_double(w.kinetic_energy()), to_double(w.potential_energy()), vec_cast<double>(w.momentum())};
+}
+
+struct SceneResult {
+  int exit_code = kExitOk;
+  nlohmann::json summary;
+};
+
+std::string body_name(const Scene& s, BodyIndex i) { return i < s.bodies.size() ? s.bodies[i].id : "?"; }
+
+template <class T>
+SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWriter* trace, const std::string& label) {
+  const Scene& scene = loaded.scene;
+  WorldOptions wo;
+  wo.until = opt.until;
+  wo.max_events = opt.max_events;
+  wo.frames_per_second = opt.frames;
+  World<T> world(scene, wo);
+
+  if (trace) {
+    trace->header(scene, scalar_name(ScalarTraits<T>::kind), to_double(world.horizon()));
+    world.on_collision([&](const CollisionInfo<T>& c) { trace->collision(scene, c); });
+    world.on_frame([&](const World<T>& w, T t) { trace->frame(w, t); });
+  }
+
+  const Measures start = measure(world);
+  const auto t_start = Clock::now();
+  auto next_progress = t_start + std::chrono::milliseconds(500);
+  std::uint64_t steps = 0;
+  while (world.step()) {
+    if (opt.progress && (++steps & 1023) == 0 && Clock::now() >= next_progress) {
+      next_progress = Clock::now() + std::chrono::milliseconds(500);
+      const double secs = std::chrono::duration<double>(Clock::now() - t_start).count();
+      fmt::print(stderr, "\r{}: t = {:.6g} / {:.6g}, {} collisions, {:.0f} events/s   ", label,
+                 to_double(world.time()), to_double(world.horizon()), world.counts().collisions,
+                 static_cast<double>(world.counts().collisions) / secs);
+    }
+  }
+  const double wall = std::chrono::duration<double>(Clock::now() - t_start).count();
+  if (opt.progress) fmt::print(stderr, "\r{:80}\r", "");
+  const Measures end = measure(world);
+  const EventCounts& n = world.counts();
+  const auto contact_overlap = world.largest_contact_overlap();
+  const bool full_scan = world.body_count() <= kFullOverlapScanMaxBodies;
+  const auto final_overlap = full_scan ? world.largest_overlap() : typename World<T>::Overlap{};
+  const std::uint64_t hash = world.state_hash();
+  if (trace) trace->end(world, hash);
+
+  SceneResult result;
+  nlohmann::json& j = result.summary;
+  j["scene"] = loaded.path;
+  j["name"] = scene.name;
+  j["bodies"] = scene.bodies.size();
+  j["scalar"] = scalar_name(ScalarTraits<T>::kind);
+  j["solver"] = "robust";
+  j["stop"] = stop_reason_name(world.stop_reason());
+  j["time"] = to_double(world.time());
+  j["horizon"] = to_double(world.horizon());
+  j["collisions"] = n.collisions;
+  j["overlap_rule_collisions"] = n.overlap_starts;
+  j["grazes"] = n.grazes;
+  j["timers"] = n.timers;
+  j["frames"] = n.frames;
+  j["stale"] = n.stale;
+  j["predictions"] = n.predictions;
+  j["energy_start"] = {{"kinetic", start.kinetic}, {"potential", start.potential}};
+  j["energy_end"] = {{"kinetic", end.kinetic}, {"potential", end.potential}};
+  j["momentum_start"] = {start.momentum.x, start.momentum.y};
+  j["momentum_end"] = {end.momentum.x, end.momentum.y};
+  j["largest_contact_overlap"] = {{"depth", to_double(contact_overlap.depth)},
+                                  {"relative", to_double(contact_overlap.relative)},
+                                  {"ulps", to_double(contact_overlap.ulps)}};
+  if (full_scan)
+    j["largest_final_overlap"] = {{"depth", to_double(final_overlap.depth)},
+                                  {"relative", to_double(final_overlap.relative)},
+                                  {"ulps", to_double(final_overlap.ulps)}};
+  j["overlap_bound_ulps"] = kOverlapBoundUlps;
+  j["state_hash"] = fmt::format("{:#018x}", hash);
+  j["wall_seconds"] = wall;
+  j["events_per_second"] = wall > 0 ? static_cast<double>(n.collisions) / wall : 0.0;
+
+  if (world.stop_reason() == StopReason::EventStorm) {
+    const auto& s = world.storm();
+    j["storm"] = {{"time", to_double(s.time)}, {"a", body_name(scene, s.a)}, {"b", body_name(scene, s.b)},
+                  {"collisions", s.collisions}};
+    result.exit_code = kExitStorm;
+  }
+
+  if (!opt.quiet) {
+    const double e0 = start.kinetic + start.potential, e1 = end.kinetic + end.potential;
+    const double de = e1 - e0;
+    fmt::print("scene {} (\"{}\"): {} bodies, scalar {}, solver robust\n", loaded.path, scene.name, scene.bodies.size(),
+               scalar_name(ScalarTraits<T>::kind));
+    fmt::print("  stopped: {} at t = {:.17g} (horizon {:.17g})\n", stop_reason_name(world.stop_reason()),
+               to_double(world.time()), to_double(world.horizon()));
+    fmt::print("  events: {} collisions ({} by the overlap rule), {} grazes, {} timers, {} frames\n", n.collisions,
+               n.overlap_starts, n.grazes, n.timers, n.frames);
+    fmt::print("  energy: kinetic {:.17g} -> {:.17g}, potential {:.17g} -> {:.17g}\n", start.kinetic, end.kinetic,
+               start.potential, end.potential);
+    fmt::print("  energy: total {:.17g} -> {:.17g} (change {:.3g}, relative {:.3g})\n", e0, e1, de,
+               e0 != 0 ? de / std::abs(e0) : 0.0);
+    fmt::print("  momentum: ({:.17g}, {:.17g}) -> ({:.17g}, {:.17g}) (change {:.3g}, {:.3g})\n", start.momentum.x,
+               start.momentum.y, end.momentum.x, end.momentum.y, end.momentum.x - start.momentum.x,
+               end.momentum.y - start.momentum.y);
+    fmt::print("  overlap: largest at a contact {:.3g} (relative {:.3g}, {:.3g} ulps)", to_double(contact_overlap.depth),
+               to_double(contact_overlap.relative), to_double(contact_overlap.ulps));
+    if (full_scan)
+      fmt::print("; at the end {:.3g} ({:.3g} ulps)", to_double(final_overlap.depth), to_double(final_overlap.ulps));
+    else
+      fmt::print("; end-of-run scan skipped above {} bodies", kFullOverlapScanMaxBodies);
+    const double worst_ulps = std::max(to_double(contact_overlap.ulps), to_double(final_overlap.ulps));
+    fmt::print("; bound {:g} ulps: {}\n", kOverlapBoundUlps, worst_ulps <= kOverlapBoundUlps ? "ok" : "EXCEEDED");
+    fmt::print("  state hash: {:#018x}\n", hash);
+    fmt::print("  speed: {} collisions in {:.3f} s: {:.0f} events/s ({} predictions, {} stale queue entries)\n",
+               n.collisions, wall, wall > 0 ? static_cast<double>(n.collisions) / wall : 0.0, n.predictions, n.stale);
+  }
+  if (world.stop_reason() == StopReason::EventStorm) {
+    const auto& s = world.storm();
+    fmt::print(stderr, "pge: {}: event storm at t = {:.17g}: bodies \"{}\" and \"{}\", {} collisions in a window of "
+               "{:.3g} s; run stopped\n",
+               loaded.path, to_double(s.time), body_name(scene, s.a), body_name(scene, s.b), s.collisions,
+               1e-9 * std::max(1.0, std::abs(to_double(s.time))));
+  }
+  return result;
+}
+
+SceneResult simulate_any(const LoadedScene& loaded, const RunOptions& opt, TraceWriter* trace, const std::string& label) {
+  switch (opt.scalar) {
+    case ScalarKind::Float: return simulate<float>(loaded, opt, trace, label);
+    case ScalarKind::Double: return simulate<double>(loaded, opt, trace, label);
+    case ScalarKind::LongDouble: return simulate<long double>(loaded, opt, trace, label);
+    case ScalarKind::QuadPrecision: return simulate<Quad>(loaded, opt, trace, label);
+  }
+  throw std::logic_error("unknown scalar kind");
+}
+
+}  // namespace
+
+std::vector<std::string> expand_scene_paths(const std::vector<std::string>& paths) {
+  std::vector<std::string> out;
+  for (const std::string& p : paths) {
+    std::error_code ec;
+    if (fs::is_directory(p, ec)) {
+      std::vector<std::string> found;
+      for (const auto& entry : fs::recursive_directory_iterator(p))
+        if (entry.is_regular_file() && entry.path().extension() == ".json") found.push_back(entry.path().string());
+      std::sort(found.begin(), found.end());
+      if (found.empty()) throw std::runtime_error(p + ": directory holds no *.json scene files");
+      out.insert(out.end(), found.begin(), found.end());
+    } else if (fs::exists(p, ec)) {
+      out.push_back(p);
+    } else {
+      throw std::runtime_error(p + ": no such file or directory");
+    }
+  }
+  return out;
+}
+
+int run_command(const RunOptions& opt) {
+  std::vector<std::string> files;
+  try {
+    files = expand_scene_paths(opt.scenes);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "pge run: {}\n", e.what());
+    return kExitBadScene;
+  }
+  if (!opt.trace.empty() && files.size() != 1) {
+    fmt::print(stderr, "pge run: --trace takes exactly one scene ({} given); use --trace-dir for several\n", files.size());
+    return kExitUsage;
+  }
+  if (!opt.trace_dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(opt.trace_dir, ec);
+    if (ec) {
+      fmt::print(stderr, "pge run: cannot create trace directory {}: {}\n", opt.trace_dir, ec.message());
+      return kExitOutput;
+    }
+  }
+
+  int exit_code = kExitOk;
+  auto fail = [&](int code) {
+    if (exit_code == kExitOk) exit_code = code;
+  };
+  nlohmann::json all = nlohmann::json::array();
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    const std::string& file = files[k];
+    const std::string label = files.size() > 1 ? fmt::format("[{}/{}] {}", k + 1, files.size(), file) : file;
+    LoadedScene loaded;
+    try {
+      loaded = read_scene_file(file);
+    } catch (const SceneError& e) {
+      fmt::print(stderr, "pge run: {}\n", e.what());
+      fail(kExitBadScene);
+      continue;
+    }
+    std::string trace_path = opt.trace;
+    if (!opt.trace_dir.empty()) trace_path = (fs::path(opt.trace_dir) / fs::path(file).stem()).string() + ".jsonl";
+    std::unique_ptr<TraceWriter> trace;
+    if (!trace_path.empty()) {
+      trace = std::make_unique<TraceWriter>();
+      if (!trace->open(trace_path)) {
+        fmt::print(stderr, "pge run: cannot write trace {}: {}\n", trace_path, trace->error());
+        fail(kExitOutput);
+        continue;
+      }
+    }
+    try {
+      SceneResult r = simulate_any(loaded, opt, trace.get(), label);
+      if (trace && !trace->close()) {
+        fmt::print(stderr, "pge run: error writing trace {}: {}\n", trace_path, trace->error());
+        fail(kExitOutput);
+      } else if (trace && !opt.quiet) {
+        fmt::print("  trace: {}\n", trace_path);
+      }
+      all.push_back(std::move(r.summary));
+      fail(r.exit_code);
+    } catch (const UnsupportedScene& e) {
+      fmt::print(stderr, "pge run: {}: {}\n", file, e.what());
+      fail(kExitUnsupported);
+    } catch (const std::invalid_argument& e) {
+      fmt::print(stderr, "pge run: {}: {}\n", file, e.what());
+      fail(kExitBadScene);
+    }
+  }
+  if (!opt.json_summary.empty()) {
+    std::ofstream out(opt.json_summary);
+    out << all.dump(2) << '\n';
+    if (!out) {
+      fmt::print(stderr, "pge run: cannot write {}\n", opt.json_summary);
+      fail(kExitOutput);
+    }
+  }
+  return exit_code;
+}
+
+}  // namespace pge::cli

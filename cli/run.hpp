@@ -1,0 +1,31 @@
+// `pge run`: simulate scenes, print a summary, write event traces.
+#pragma once
+
+#include "pge/scalar.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pge::cli {
+
+struct RunOptions {
+  std::vector<std::string> scenes;  // files or directories (every *.json inside, sorted)
+  double until = -1;                // < 0: each scene's run.until
+  std::uint64_t max_events = 0;     // 0: each scene's run.max_events
+  double frames = -1;               // < 0: each scene's run.frames_per_second
+  std::string trace;                // one scene: its JSON Lines trace
+  std::string trace_dir;            // several scenes: DIR/<scene file stem>.jsonl
+  std::string json_summary;         // all summaries as one JSON array
+  ScalarKind scalar = ScalarKind::Double;
+  bool quiet = false;               // no summary on stdout (errors still go to stderr)
+  bool progress = false;            // progress line on stderr (default: when it is a terminal)
+};
+
+int run_command(const RunOptions& options);
+
+// Expands files and directories into a sorted list of scene files; throws std::runtime_error
+// naming a path that does not exist.
+std::vector<std::string> expand_scene_paths(const std::vector<std::string>& paths);
+
+}  // namespace pge::cli

@@ -1,0 +1,65 @@
+// The event trace: JSON Lines, one object per line (format "pge-trace/1", see README.md).
+// Numbers are written in shortest round-trip form; extended scalars are rounded to double.
+#pragma once
+
+#include "pge/scene.hpp"
+#include "pge/world.hpp"
+
+#include <fmt/core.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace pge::cli {
+
+class TraceWriter {
+ public:
+  TraceWriter() = default;
+  TraceWriter(const TraceWriter&) = delete;
+  TraceWriter& operator=(const TraceWriter&) = delete;
+  ~TraceWriter();
+
+  bool open(const std::string& path);
+  bool close();  // false if anything failed to write
+  const std::string& error() const { return error_; }
+
+  void header(const Scene& scene, std::string_view scalar, double horizon);
+
+  template <class T> void collision(const Scene& scene, const CollisionInfo<T>& c) {
+    fmt::print(file_,
+               "{{\"event\":\"collision\",\"t\":{},\"a\":{},\"b\":{},\"contact\":\"{}\",\"features\":[{},{}],"
+               "\"normal\":[{},{}],\"point\":[{},{}],\"approach_speed\":{},\"impulse\":{},\"gap\":{},"
+               "\"overlap_rule\":{},\"va\":[{},{}],\"vb\":[{},{}]}}\n",
+               d(c.time), quoted(scene.bodies[c.a].id), quoted(scene.bodies[c.b].id), contact_kind_name(c.contact),
+               c.feature_a, c.feature_b, d(c.normal.x), d(c.normal.y), d(c.point.x), d(c.point.y),
+               d(c.approach_speed), d(c.impulse), d(c.gap), c.at_start_overlap ? "true" : "false", d(c.va_after.x),
+               d(c.va_after.y), d(c.vb_after.x), d(c.vb_after.y));
+  }
+
+  template <class T> void frame(const World<T>& w, T t) {
+    fmt::print(file_, "{{\"event\":\"frame\",\"t\":{},\"bodies\":[", d(t));
+    for (BodyIndex i = 0; i < w.body_count(); ++i) {
+      const BodySnapshot<T> s = w.snapshot(i);
+      fmt::print(file_, "{}[{},{},{},{}]", i ? "," : "", d(s.position.x), d(s.position.y), d(s.velocity.x),
+                 d(s.velocity.y));
+    }
+    fmt::print(file_, "]}}\n");
+  }
+
+  template <class T> void end(const World<T>& w, std::uint64_t hash) {
+    fmt::print(file_, "{{\"event\":\"end\",\"t\":{},\"stop\":\"{}\",\"collisions\":{},\"state_hash\":\"{:#018x}\"}}\n",
+               d(w.time()), stop_reason_name(w.stop_reason()), w.counts().collisions, hash);
+  }
+
+ private:
+  template <class T> static double d(const T& x) { return static_cast<double>(x); }
+  static std::string quoted(std::string_view s);
+
+  std::FILE* file_ = nullptr;
+  std::string path_;
+  std::string error_;
+};
+
+}  // namespace pge::cli

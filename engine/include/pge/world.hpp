@@ -1,0 +1,116 @@
+// The event-driven world: bodies on closed-form paths, jumping from one predicted event to
+// the next.
+#pragma once
+
+#include "pge/event.hpp"
+#include "pge/roots.hpp"
+#include "pge/scalar.hpp"
+#include "pge/scene.hpp"
+#include "pge/vec2.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pge {
+
+// Thrown when a scene is valid but uses something this engine does not simulate yet.
+struct UnsupportedScene : std::runtime_error {
+  int body;
+  UnsupportedScene(int body_, const std::string& what) : std::runtime_error(what), body(body_) {}
+};
+
+struct WorldOptions {
+  double until = -1;              // horizon in seconds; < 0: the scene's run.until
+  std::uint64_t max_events = 0;   // collision budget; 0: the scene's run.max_events
+  double frames_per_second = -1;  // < 0: the scene's run.frames_per_second; 0: none
+};
+
+struct EventCounts {
+  std::uint64_t collisions = 0;   // impulses applied (approaching contacts)
+  std::uint64_t grazes = 0;       // predicted contacts found not approaching at the time
+  std::uint64_t overlap_starts = 0;  // collisions by the overlap rule
+  std::uint64_t timers = 0;
+  std::uint64_t frames = 0;
+  std::uint64_t stale = 0;        // queue entries dropped because a partner had changed
+  std::uint64_t predictions = 0;  // pair predictions computed
+};
+
+// A body's state at the world's current time.
+template <class T> struct BodySnapshot {
+  Vec2<T> position;
+  Vec2<T> velocity;
+};
+
+template <class T> class World {
+ public:
+  using CollisionCallback = std::function<void(const CollisionInfo<T>&)>;
+  using TimerCallback = std::function<void(World&, T time)>;
+  using FrameCallback = std::function<void(const World&, T time)>;
+
+  // Throws std::invalid_argument for an invalid scene (see validate_scene) and
+  // UnsupportedScene for shapes this version does not simulate.
+  explicit World(const Scene& scene, const WorldOptions& options = {});
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  void on_collision(CollisionCallback callback);
+  void on_frame(FrameCallback callback);
+  // Calls `callback` when simulated time reaches `time` (ignored if past the horizon).
+  void add_timer(T time, TimerCallback callback);
+
+  // Processes events until the horizon, the collision budget, a storm, or stop().
+  StopReason run();
+  // Processes the next event; false when the run is over (see stop_reason()).
+  bool step();
+  void stop();  // from a callback: end the run after the current event
+
+  T time() const;
+  T horizon() const;
+  StopReason stop_reason() const;
+  const StormInfo<T>& storm() const;
+  const EventCounts& counts() const;
+
+  std::size_t body_count() const;
+  const std::string& body_id(BodyIndex i) const;
+  bool is_fixed(BodyIndex i) const;
+  T mass(BodyIndex i) const;  // 0 for fixed bodies (infinite mass)
+  BodySnapshot<T> snapshot(BodyIndex i) const;  // at time()
+  // Replaces a moving body's velocity at time() and reschedules it (for timer callbacks).
+  void set_velocity(BodyIndex i, Vec2<T> velocity);
+
+  // Kinetic energy, potential energy of each body's constant acceleration field, and total
+  // momentum of the moving bodies, at time().
+  T kinetic_energy() const;
+  T potential_energy() const;
+  Vec2<T> momentum() const;
+
+  // The largest overlap of any pair at time(): its depth, the depth as a fraction of the contact
+  // distance (radius sum, or radius against a wall), and the depth in units of the rounding
+  // of the pair's coordinates, epsilon(T) * (largest coordinate magnitude + contact distance);
+  // the engine promises ulps <= kOverlapBoundUlps (constants.hpp). O(n^2): for checks only.
+  struct Overlap { T depth{}; T relative{}; T ulps{}; BodyIndex a = kNoBody, b = kNoBody; };
+  Overlap largest_overlap() const;
+  // The largest overlap seen at any collision so far (measured at the contact time).
+  Overlap largest_contact_overlap() const;
+
+  // A hash over the exact bits of time() and every body's position and velocity at time().
+  std::uint64_t state_hash() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+extern template class World<float>;
+extern template class World<double>;
+extern template class World<long double>;
+extern template class World<Quad>;
+
+}  // namespace pge

@@ -1,0 +1,100 @@
+// One scheduled contact per moving body, in an indexed binary min-heap: updating a body's
+// event is O(log n) and leaves no stale copies behind.
+#pragma once
+
+#include "pge/event.hpp"
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace pge {
+
+template <class T> struct Scheduled {
+  T time = std::numeric_limits<T>::infinity();
+  BodyIndex lo = kNoBody;  // the pair, lower index first
+  BodyIndex hi = kNoBody;
+  ContactKind contact = ContactKind::CircleCircle;
+  std::uint16_t feature_a = 0;
+  std::uint16_t feature_b = 0;
+  bool at_start_overlap = false;
+  BodyIndex partner = kNoBody;          // the other body of the pair, seen from the owner
+  std::uint64_t partner_version = 0;    // the partner's version when this was predicted
+
+  bool valid() const { return lo != kNoBody; }
+
+  // The fixed order of simultaneous events: time, then (all collisions) the lower body, the
+  // higher body, then the contact kind and features so that the order is total.
+  bool key_less(const Scheduled& o) const {
+    if (!valid()) return false;
+    if (!o.valid()) return true;
+    if (time != o.time) return time < o.time;
+    if (lo != o.lo) return lo < o.lo;
+    if (hi != o.hi) return hi < o.hi;
+    if (contact != o.contact) return contact < o.contact;
+    if (feature_a != o.feature_a) return feature_a < o.feature_a;
+    return feature_b < o.feature_b;
+  }
+};
+
+template <class T> class EventHeap {
+ public:
+  void reset(std::size_t body_count, const std::vector<BodyIndex>& members) {
+    entries_.assign(body_count, Scheduled<T>{});
+    pos_.assign(body_count, kAbsent);
+    heap_ = members;
+    for (std::size_t k = 0; k < heap_.size(); ++k) pos_[heap_[k]] = k;
+  }
+  bool empty() const { return heap_.empty(); }
+  const Scheduled<T>& top() const { return entries_[heap_.front()]; }
+  BodyIndex top_index() const { return heap_.front(); }
+  const Scheduled<T>& at(BodyIndex i) const { return entries_[i]; }
+
+  void set(BodyIndex i, const Scheduled<T>& s) {
+    entries_[i] = s;
+    std::size_t k = pos_[i];
+    if (k == kAbsent) return;
+    sift_up(k);
+    sift_down(pos_[i]);
+  }
+
+ private:
+  static constexpr std::size_t kAbsent = std::numeric_limits<std::size_t>::max();
+
+  // Equal keys (one contact held by both of its bodies) are ordered by owner index.
+  bool less(BodyIndex x, BodyIndex y) const {
+    if (entries_[x].key_less(entries_[y])) return true;
+    if (entries_[y].key_less(entries_[x])) return false;
+    return x < y;
+  }
+  void place(std::size_t k, BodyIndex i) { heap_[k] = i; pos_[i] = k; }
+  void sift_up(std::size_t k) {
+    const BodyIndex i = heap_[k];
+    while (k > 0) {
+      const std::size_t parent = (k - 1) / 2;
+      if (!less(i, heap_[parent])) break;
+      place(k, heap_[parent]);
+      k = parent;
+    }
+    place(k, i);
+  }
+  void sift_down(std::size_t k) {
+    const BodyIndex i = heap_[k];
+    const std::size_t n = heap_.size();
+    for (;;) {
+      std::size_t child = 2 * k + 1;
+      if (child >= n) break;
+      if (child + 1 < n && less(heap_[child + 1], heap_[child])) ++child;
+      if (!less(heap_[child], i)) break;
+      place(k, heap_[child]);
+      k = child;
+    }
+    place(k, i);
+  }
+
+  std::vector<Scheduled<T>> entries_;
+  std::vector<std::size_t> pos_;
+  std::vector<BodyIndex> heap_;
+};
+
+}  // namespace pge

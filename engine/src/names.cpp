@@ -1,0 +1,54 @@
+#include "pge/event.hpp"
+#include "pge/scalar.hpp"
+
+namespace pge {
+
+std::string_view scalar_name(ScalarKind kind) {
+  switch (kind) {
+    case ScalarKind::Float: return "float";
+    case ScalarKind::Double: return "double";
+    case ScalarKind::LongDouble: return "long-double";
+    case ScalarKind::QuadPrecision: return "quad";
+  }
+  return "?";
+}
+
+bool parse_scalar_kind(std::string_view text, ScalarKind& out) {
+  if (text == "float") out = ScalarKind::Float;
+  else if (text == "double") out = ScalarKind::Double;
+  else if (text == "long-double" || text == "long double") out = ScalarKind::LongDouble;
+  else if (text == "quad") out = ScalarKind::QuadPrecision;
+  else return false;
+  return true;
+}
+
+std::string_view event_kind_name(EventKind kind) {
+  switch (kind) {
+    case EventKind::Collision: return "collision";
+    case EventKind::Timer: return "timer";
+    case EventKind::Frame: return "frame";
+  }
+  return "?";
+}
+
+std::string_view contact_kind_name(ContactKind kind) {
+  switch (kind) {
+    case ContactKind::CircleCircle: return "circle-circle";
+    case ContactKind::CircleEdge: return "circle-edge";
+    case ContactKind::CircleVertex: return "circle-vertex";
+    case ContactKind::VertexEdge: return "vertex-edge";
+  }
+  return "?";
+}
+
+std::string_view stop_reason_name(StopReason reason) {
+  switch (reason) {
+    case StopReason::ReachedUntil: return "reached-until";
+    case StopReason::MaxEvents: return "max-events";
+    case StopReason::EventStorm: return "event-storm";
+    case StopReason::Stopped: return "stopped";
+  }
+  return "?";
+}
+
+}  // namespace pge

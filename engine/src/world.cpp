@@ -1,0 +1,448 @@
+// The event-driven world. Each moving body keeps its own reference time and is brought up to
+// date only when an event touches it; each keeps one scheduled event (its earliest predicted
+// contact) in an indexed binary heap, and an event whose partner has changed since it was
+// predicted is dropped and its owner rescheduled (lazy invalidation by version counters).
+#include "pge/world.hpp"
+
+#include "pge/constants.hpp"
+#include "pge/hash.hpp"
+#include "pge/validate.hpp"
+
+#include "contact.hpp"
+#include "event_heap.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <queue>
+#include <stdexcept>
+
+namespace pge {
+
+template <class T> struct World<T>::Impl {
+  struct Body {
+    std::string id;
+    ShapeKind shape = ShapeKind::Circle;
+    bool fixed = false;
+    T radius{};
+    Vec2<T> seg_a, seg_b;  // segment endpoints in world coordinates (segments are fixed)
+    T mass{};
+    T inv_mass{};          // 0 for fixed bodies
+    T restitution{1};
+    // Motion since t0: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2.
+    T t0{};
+    Vec2<T> p0, v0, acc;
+    std::uint64_t version = 0;  // bumped whenever the body's motion changes
+    T storm_start{};
+    std::uint32_t storm_count = 0;
+  };
+
+  struct Timer {
+    T time;
+    std::uint64_t seq;
+    TimerCallback callback;
+    bool operator>(const Timer& o) const { return time > o.time || (time == o.time && seq > o.seq); }
+  };
+
+  std::vector<Body> bodies;
+  std::vector<BodyIndex> moving;         // indices of moving bodies, ascending
+  EventHeap<T> heap;                     // one scheduled contact per moving body
+  std::priority_queue<Timer, std::vector<Timer>, std::greater<>> timers;
+  std::uint64_t timer_seq = 0;
+  T now{};
+  T horizon{};
+  std::uint64_t max_events = 0;
+  double fps = 0;
+  std::uint64_t next_frame = 0;
+  StopReason reason = StopReason::ReachedUntil;
+  bool finished = false;
+  bool stop_requested = false;
+  StormInfo<T> storm;
+  EventCounts counts;
+  Overlap worst_contact;
+  CollisionCallback on_collision;
+  FrameCallback on_frame;
+
+  Kinematics<T> kinematics(const Body& b, const T& t) const {
+    if (b.fixed) return {b.p0, Vec2<T>{}, Vec2<T>{}};
+    const T tau = t - b.t0;
+    return {b.p0 + b.v0 * tau + b.acc * (tau * tau / T(2)), b.v0 + b.acc * tau, b.acc};
+  }
+
+  ShapeRef<T> shape_of(const Body& b) const {
+    return {b.shape, b.radius, b.seg_a, b.seg_b};
+  }
+
+  void rebase(Body& b, const T& t) {
+    if (b.fixed) return;
+    const Kinematics<T> k = kinematics(b, t);
+    b.p0 = k.p;
+    b.v0 = k.v;
+    b.t0 = t;
+  }
+
+  // The earliest contact of the pair (lo < hi) from `now` to the horizon.
+  std::optional<PredictedContact<T>> predict(BodyIndex lo, BodyIndex hi) {
+    const Body& a = bodies[lo];
+    const Body& b = bodies[hi];
+    if (a.fixed && b.fixed) return std::nullopt;
+    ++counts.predictions;
+    auto c = predict_contact(shape_of(a), kinematics(a, now), shape_of(b), kinematics(b, now), horizon - now);
+    if (!c) return std::nullopt;
+    c->time = now + c->time;  // relative to absolute
+    if (c->time > horizon) return std::nullopt;
+    return c;
+  }
+
+  void reschedule(BodyIndex i) {
+    Scheduled<T> best;
+    for (BodyIndex j = 0; j < bodies.size(); ++j) {
+      if (j == i) continue;
+      const BodyIndex lo = std::min(i, j), hi = std::max(i, j);
+      auto c = predict(lo, hi);
+      if (!c) continue;
+      Scheduled<T> s{c->time, lo, hi, c->contact, c->feature_a, c->feature_b, c->at_start_overlap,
+                     j, bodies[j].version};
+      if (s.key_less(best)) best = s;
+    }
+    heap.set(i, best);
+  }
+
+  // Initial schedule: each pair predicted once, offered to both of its bodies.
+  void schedule_all() {
+    std::vector<Scheduled<T>> best(bodies.size());
+    for (BodyIndex i = 0; i < bodies.size(); ++i) {
+      for (BodyIndex j = i + 1; j < bodies.size(); ++j) {
+        auto c = predict(i, j);
+        if (!c) continue;
+        Scheduled<T> s{c->time, i, j, c->contact, c->feature_a, c->feature_b, c->at_start_overlap, j,
+                       bodies[j].version};
+        if (!bodies[i].fixed && s.key_less(best[i])) best[i] = s;
+        s.partner = i;
+        s.partner_version = bodies[i].version;
+        if (!bodies[j].fixed && s.key_less(best[j])) best[j] = s;
+      }
+    }
+    for (BodyIndex i : moving) heap.set(i, best[i]);
+  }
+
+  void note_storm(BodyIndex i, BodyIndex partner) {
+    Body& b = bodies[i];
+    using std::abs;
+    const T window = T(kStormWindowRelative) * std::max(T(1), abs(now));
+    if (b.storm_count > 0 && now - b.storm_start <= window) {
+      ++b.storm_count;
+    } else {
+      b.storm_start = now;
+      b.storm_count = 1;
+    }
+    if (b.storm_count > kStormCollisions && !finished) {
+      storm = {now, std::min(i, partner), std::max(i, partner), b.storm_count};
+      reason = StopReason::EventStorm;
+      finished = true;
+    }
+  }
+
+  void collide(const Scheduled<T>& s) {
+    Body& a = bodies[s.lo];
+    Body& b = bodies[s.hi];
+    rebase(a, now);
+    rebase(b, now);
+    const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
+    const ContactGeometry<T> g =
+        contact_geometry(s.contact, s.feature_a, s.feature_b, shape_of(a), ka, shape_of(b), kb);
+
+    CollisionInfo<T> info;
+    info.time = now;
+    info.a = s.lo;
+    info.b = s.hi;
+    info.contact = s.contact;
+    info.feature_a = s.feature_a;
+    info.feature_b = s.feature_b;
+    info.point = g.point;
+    info.gap = g.gap;
+    info.at_start_overlap = s.at_start_overlap;
+    info.va_before = ka.v;
+    info.vb_before = kb.v;
+
+    // Impulse along the (unnormalised) normal n: j = -(1 + e) (v_rel . n) / (n . n (1/ma + 1/mb)).
+    using std::sqrt;
+    const Vec2<T> n = g.normal;
+    const T nn = dot(n, n);
+    const T vn = dot(kb.v - ka.v, n);
+    const T n_len = sqrt(nn);
+    info.normal = n_len > T(0) ? n * (T(1) / n_len) : n;
+    info.approach_speed = n_len > T(0) ? -vn / n_len : T(0);
+    const T inv_sum = a.inv_mass + b.inv_mass;
+    if (vn < T(0) && nn > T(0) && inv_sum > T(0)) {
+      const T e = std::min(a.restitution, b.restitution);
+      const T j = -(T(1) + e) * vn / (nn * inv_sum);
+      a.v0 -= n * (j * a.inv_mass);
+      b.v0 += n * (j * b.inv_mass);
+      info.impulse = j * n_len;
+      ++counts.collisions;
+      if (s.at_start_overlap) ++counts.overlap_starts;
+    } else {
+      ++counts.grazes;  // predicted, but not approaching at the contact: no impulse is due
+    }
+    info.va_after = a.v0;
+    info.vb_after = b.v0;
+
+    const Overlap o = measure_overlap(-g.gap, g.contact_distance, ka.p, kb.p, s.lo, s.hi);
+    if (o.ulps > worst_contact.ulps) worst_contact = o;
+    ++a.version;
+    ++b.version;
+    if (!a.fixed) note_storm(s.lo, s.hi);
+    if (!b.fixed) note_storm(s.hi, s.lo);
+    if (!a.fixed) reschedule(s.lo);
+    if (!b.fixed) reschedule(s.hi);
+    if (on_collision) on_collision(info);
+    if (max_events > 0 && counts.collisions + counts.grazes >= max_events && !finished) {
+      reason = StopReason::MaxEvents;
+      finished = true;
+    }
+  }
+
+  // Overlap depth as a fraction of the contact distance and in units of the pair's rounding.
+  static Overlap measure_overlap(const T& depth, const T& contact_distance, const Vec2<T>& pa, const Vec2<T>& pb,
+                                 BodyIndex a, BodyIndex b) {
+    if (!(depth > T(0))) return {};
+    using std::abs;
+    const T coords = std::max(std::max(abs(pa.x), abs(pa.y)), std::max(abs(pb.x), abs(pb.y)));
+    const T unit = std::numeric_limits<T>::epsilon() * (coords + contact_distance);
+    return {depth, depth / contact_distance, depth / unit, a, b};
+  }
+
+#ifdef PGE_VALIDATE
+  // Expensive validation (PGE_VALIDATE builds): after every event, time has not gone back,
+  // every moving body's state is finite, and (for scenes small enough to scan every event) no
+  // pair overlaps past the bound; otherwise the scan runs every 1024th event.
+  T last_validated_time{};
+  std::uint64_t validations = 0;
+  void validate(const World& self) {
+    using std::isfinite;
+    if (now < last_validated_time) throw std::logic_error("PGE_VALIDATE: time went backwards");
+    last_validated_time = now;
+    for (BodyIndex i : moving) {
+      const Kinematics<T> k = kinematics(bodies[i], now);
+      if (!(isfinite(k.p.x) && isfinite(k.p.y) && isfinite(k.v.x) && isfinite(k.v.y)))
+        throw std::logic_error("PGE_VALIDATE: body \"" + bodies[i].id + "\" has a non-finite state");
+    }
+    if (bodies.size() <= 200 || (++validations & 1023) == 0) {
+      const Overlap o = self.largest_overlap();
+      if (o.ulps > T(kOverlapBoundUlps))
+        throw std::logic_error("PGE_VALIDATE: bodies \"" + bodies[o.a].id + "\" and \"" + bodies[o.b].id +
+                               "\" overlap past the bound");
+    }
+  }
+#endif
+
+  T frame_time(std::uint64_t k) const { return T(static_cast<double>(k)) / T(fps); }
+};
+
+template <class T> World<T>::World(const Scene& scene, const WorldOptions& options) : impl_(std::make_unique<Impl>()) {
+  if (auto problem = validate_scene(scene)) {
+    std::string where = problem->body >= 0 ? "body \"" + scene.bodies[problem->body].id + "\": " : "";
+    throw std::invalid_argument(where + problem->field + ": " + problem->message);
+  }
+  Impl& w = *impl_;
+  w.horizon = T(options.until >= 0 ? options.until : scene.run.until);
+  w.max_events = options.max_events > 0 ? options.max_events : scene.run.max_events;
+  w.fps = options.frames_per_second >= 0 ? options.frames_per_second : scene.run.frames_per_second;
+  w.bodies.reserve(scene.bodies.size());
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDesc& d = scene.bodies[i];
+    if (d.shape == ShapeKind::Polygon)
+      throw UnsupportedScene(static_cast<int>(i), "body \"" + d.id + "\": polygon: polygons are not simulated by this engine version yet");
+    if (d.shape == ShapeKind::Segment && !d.fixed)
+      throw UnsupportedScene(static_cast<int>(i), "body \"" + d.id + "\": segment: moving segments are not simulated by this engine version yet (make it \"fixed\": true)");
+    typename Impl::Body b;
+    b.id = d.id;
+    b.shape = d.shape;
+    b.fixed = d.fixed;
+    b.radius = T(d.radius);
+    b.seg_a = vec_cast<T>(d.position + d.a);
+    b.seg_b = vec_cast<T>(d.position + d.b);
+    b.mass = d.fixed ? T(0) : T(d.mass);
+    b.inv_mass = d.fixed ? T(0) : T(1) / T(d.mass);
+    b.restitution = T(d.restitution >= 0 ? d.restitution : scene.world.restitution);
+    b.p0 = vec_cast<T>(d.position);
+    if (!d.fixed) {
+      b.v0 = vec_cast<T>(d.velocity);
+      const Vec2d total = d.acceleration + (d.gravity ? scene.world.gravity : Vec2d{});
+      b.acc = vec_cast<T>(total);
+      w.moving.push_back(static_cast<BodyIndex>(i));
+    }
+    w.bodies.push_back(std::move(b));
+  }
+  w.heap.reset(w.bodies.size(), w.moving);
+  w.schedule_all();
+}
+
+template <class T> World<T>::~World() = default;
+template <class T> World<T>::World(World&&) noexcept = default;
+template <class T> World<T>& World<T>::operator=(World&&) noexcept = default;
+
+template <class T> void World<T>::on_collision(CollisionCallback cb) { impl_->on_collision = std::move(cb); }
+template <class T> void World<T>::on_frame(FrameCallback cb) { impl_->on_frame = std::move(cb); }
+template <class T> void World<T>::add_timer(T time, TimerCallback cb) {
+  if (time < impl_->now || time > impl_->horizon) return;
+  impl_->timers.push({time, impl_->timer_seq++, std::move(cb)});
+}
+
+template <class T> bool World<T>::step() {
+  Impl& w = *impl_;
+  while (!w.finished) {
+    if (w.stop_requested) {
+      w.reason = StopReason::Stopped;
+      w.finished = true;
+      break;
+    }
+    // The three sources, merged in the fixed order: time, then kind (collision, timer, frame).
+    const Scheduled<T>* contact = w.heap.empty() ? nullptr : &w.heap.top();
+    const bool has_contact = contact && contact->valid();
+    const bool has_timer = !w.timers.empty();
+    const bool has_frame = w.fps > 0 && w.frame_time(w.next_frame) <= w.horizon;
+    T best = std::numeric_limits<T>::infinity();
+    EventKind kind = EventKind::Collision;
+    if (has_contact) best = contact->time;
+    if (has_timer && w.timers.top().time < best) { best = w.timers.top().time; kind = EventKind::Timer; }
+    if (has_frame && w.frame_time(w.next_frame) < best) { best = w.frame_time(w.next_frame); kind = EventKind::Frame; }
+    if (!(best <= w.horizon)) {
+      w.now = w.horizon;
+      w.reason = StopReason::ReachedUntil;
+      w.finished = true;
+      break;
+    }
+    if (kind == EventKind::Collision) {
+      const Scheduled<T> s = *contact;
+      const BodyIndex owner = w.heap.top_index();
+      const auto& partner = w.bodies[s.partner];
+      if (!partner.fixed && partner.version != s.partner_version) {
+        ++w.counts.stale;  // the partner moved differently since this was predicted
+        w.reschedule(owner);
+        continue;
+      }
+      w.now = std::max(w.now, s.time);
+      w.collide(s);
+#ifdef PGE_VALIDATE
+      w.validate(*this);
+#endif
+      return true;
+    }
+    if (kind == EventKind::Timer) {
+      typename Impl::Timer t = w.timers.top();
+      w.timers.pop();
+      w.now = std::max(w.now, t.time);
+      ++w.counts.timers;
+      t.callback(*this, w.now);
+      return true;
+    }
+    w.now = std::max(w.now, best);
+    ++w.next_frame;
+    ++w.counts.frames;
+    if (w.on_frame) w.on_frame(*this, w.now);
+    return true;
+  }
+  return false;
+}
+
+template <class T> StopReason World<T>::run() {
+  while (step()) {
+  }
+  return impl_->reason;
+}
+
+template <class T> void World<T>::stop() { impl_->stop_requested = true; }
+template <class T> T World<T>::time() const { return impl_->now; }
+template <class T> T World<T>::horizon() const { return impl_->horizon; }
+template <class T> StopReason World<T>::stop_reason() const { return impl_->reason; }
+template <class T> const StormInfo<T>& World<T>::storm() const { return impl_->storm; }
+template <class T> const EventCounts& World<T>::counts() const { return impl_->counts; }
+template <class T> std::size_t World<T>::body_count() const { return impl_->bodies.size(); }
+template <class T> const std::string& World<T>::body_id(BodyIndex i) const { return impl_->bodies.at(i).id; }
+template <class T> bool World<T>::is_fixed(BodyIndex i) const { return impl_->bodies.at(i).fixed; }
+template <class T> T World<T>::mass(BodyIndex i) const { return impl_->bodies.at(i).mass; }
+
+template <class T> BodySnapshot<T> World<T>::snapshot(BodyIndex i) const {
+  const Kinematics<T> k = impl_->kinematics(impl_->bodies.at(i), impl_->now);
+  return {k.p, k.v};
+}
+
+template <class T> void World<T>::set_velocity(BodyIndex i, Vec2<T> velocity) {
+  Impl& w = *impl_;
+  auto& b = w.bodies.at(i);
+  if (b.fixed) throw std::invalid_argument("set_velocity: body \"" + b.id + "\" is fixed");
+  w.rebase(b, w.now);
+  b.v0 = velocity;
+  ++b.version;
+  w.reschedule(i);
+}
+
+template <class T> T World<T>::kinetic_energy() const {
+  T e{};
+  for (BodyIndex i : impl_->moving) {
+    const auto& b = impl_->bodies[i];
+    const Vec2<T> v = impl_->kinematics(b, impl_->now).v;
+    e += b.mass * dot(v, v) / T(2);
+  }
+  return e;
+}
+
+template <class T> T World<T>::potential_energy() const {
+  T e{};
+  for (BodyIndex i : impl_->moving) {
+    const auto& b = impl_->bodies[i];
+    e -= b.mass * dot(b.acc, impl_->kinematics(b, impl_->now).p);
+  }
+  return e;
+}
+
+template <class T> Vec2<T> World<T>::momentum() const {
+  Vec2<T> m;
+  for (BodyIndex i : impl_->moving) {
+    const auto& b = impl_->bodies[i];
+    m += impl_->kinematics(b, impl_->now).v * b.mass;
+  }
+  return m;
+}
+
+template <class T> typename World<T>::Overlap World<T>::largest_overlap() const {
+  const Impl& w = *impl_;
+  Overlap worst;
+  for (BodyIndex i = 0; i < w.bodies.size(); ++i) {
+    for (BodyIndex j = i + 1; j < w.bodies.size(); ++j) {
+      if (w.bodies[i].fixed && w.bodies[j].fixed) continue;
+      const auto sep = separation(w.shape_of(w.bodies[i]), w.kinematics(w.bodies[i], w.now).p,
+                                  w.shape_of(w.bodies[j]), w.kinematics(w.bodies[j], w.now).p);
+      if (!sep) continue;
+      const Overlap o = Impl::measure_overlap(-sep->gap, sep->contact_distance, w.kinematics(w.bodies[i], w.now).p,
+                                              w.kinematics(w.bodies[j], w.now).p, i, j);
+      if (o.ulps > worst.ulps) worst = o;
+    }
+  }
+  return worst;
+}
+
+template <class T> typename World<T>::Overlap World<T>::largest_contact_overlap() const { return impl_->worst_contact; }
+
+template <class T> std::uint64_t World<T>::state_hash() const {
+  StateHasher h;
+  h.add(impl_->now);
+  for (BodyIndex i = 0; i < impl_->bodies.size(); ++i) {
+    const Kinematics<T> k = impl_->kinematics(impl_->bodies[i], impl_->now);
+    h.add(k.p.x);
+    h.add(k.p.y);
+    h.add(k.v.x);
+    h.add(k.v.y);
+  }
+  return h.value();
+}
+
+template class World<float>;
+template class World<double>;
+template class World<long double>;
+template class World<Quad>;
+
+}  // namespace pge

@@ -1,0 +1,408 @@
+// Reading "pge-scene/1" files. The format is documented in fixtures/README.md.
+#include "json_path.hpp"
+#include "pge/scene_io.hpp"
+#include "pge/validate.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <map>
+
+namespace pge {
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr std::string_view kFormat = "pge-scene/1";
+// Longest excerpt of an offending value quoted in a message; keeps messages to one short line.
+constexpr std::size_t kMaxQuotedValue = 40;
+// max_events may also be written as an integral float (1e6); below 2^64 it converts exactly.
+constexpr double kMaxEventsLimit = 18446744073709551616.0;
+
+std::string excerpt(std::string text) {
+  if (text.size() > kMaxQuotedValue) text = text.substr(0, kMaxQuotedValue) + "...";
+  return text;
+}
+
+std::string describe(const Json& value) {
+  return excerpt(value.dump(-1, ' ', false, Json::error_handler_t::replace));
+}
+
+std::string quoted_list(std::initializer_list<std::string_view> names) {
+  std::string out;
+  for (std::string_view name : names) out += fmt::format("{}\"{}\"", out.empty() ? "" : ", ", name);
+  return out;
+}
+
+// The whole run of non-separator characters around `offset`, e.g. "NaN" or "-Infinity".
+std::string_view word_at(std::string_view text, std::size_t offset) {
+  auto is_word = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
+  };
+  std::size_t begin = std::min(offset, text.size());
+  while (begin > 0 && is_word(text[begin - 1])) --begin;
+  std::size_t end = begin;
+  while (end < text.size() && is_word(text[end])) ++end;
+  return text.substr(begin, end - begin);
+}
+
+bool is_nan_or_infinity(std::string_view word) {
+  if (!word.empty() && (word[0] == '-' || word[0] == '+')) word.remove_prefix(1);
+  std::string lower(word);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return lower == "nan" || lower == "inf" || lower == "infinity";
+}
+
+// nlohmann's message without its "[json.exception...] parse error at line L, column C: " prefix;
+// the position is reported our way.
+std::string syntax_reason(const Json::parse_error& error) {
+  std::string_view what = error.what();
+  const std::size_t start = what.find("syntax error");
+  return std::string(start == std::string_view::npos ? what : what.substr(start));
+}
+
+// A number literal that no double can hold: the parser rejects overflow without saying where,
+// and silently turns a tiny non-zero number into 0. Empty if the literal is fine.
+std::string number_problem(std::string_view literal) {
+  double value = 0;
+  const auto result = std::from_chars(literal.data(), literal.data() + literal.size(), value);
+  if (result.ec != std::errc::result_out_of_range) return {};
+  const bool tiny =
+      literal.find("e-") != std::string_view::npos || literal.find("E-") != std::string_view::npos;
+  return fmt::format(
+      "number {} is out of range for a double ({})", excerpt(std::string(literal)),
+      tiny ? "it would read as 0; write 0 if that is meant" : "it would overflow to infinity");
+}
+
+class SceneReader {
+ public:
+  SceneReader(std::string_view text, const std::string& origin) : text_(text), origin_(origin) {}
+
+  LoadedScene read() {
+    const Json root = parse_json();
+    LoadedScene loaded;
+    loaded.path = origin_;
+    loaded.scene = read_scene(root);
+    if (root.contains("expect")) {
+      const JsonPath path = JsonPath{} + "expect";
+      object_at(root["expect"], path);
+      const std::size_t begin = find_value(text_, path);
+      loaded.expect_json = std::string(text_.substr(begin, value_end(text_, begin) - begin));
+    }
+    if (const auto problem = validate_scene(loaded.scene)) report(*problem, loaded.scene);
+    return loaded;
+  }
+
+ private:
+  // --- errors --------------------------------------------------------------------------------
+
+  SceneErrorPlace place(const JsonPath& path, std::size_t offset) const {
+    SceneErrorPlace where;
+    where.file = origin_;
+    if (offset != std::string_view::npos) {
+      const TextPosition pos = text_position(text_, offset);
+      where.line = pos.line;
+      where.column = pos.column;
+    }
+    const bool in_body =
+        path.size() >= 2 && path[0].index < 0 && path[0].key == "bodies" && path[1].index >= 0;
+    if (in_body) {
+      where.body_index = path[1].index;
+      const std::size_t id = find_value(text_, JsonPath{path[0], path[1]} + "id");
+      if (id != std::string_view::npos) where.body_id = string_literal(text_, id);
+    }
+    where.field = dotted(path, in_body ? 2 : 0);
+    return where;
+  }
+
+  // Where the value at `path` starts or, when it is absent, the nearest enclosing value:
+  // a missing key is reported at the object that lacks it.
+  std::size_t locate(JsonPath path) const {
+    for (;; path.pop_back()) {
+      const std::size_t offset = find_value(text_, path);
+      if (offset != std::string_view::npos || path.empty()) return offset;
+    }
+  }
+
+  [[noreturn]] void fail(const JsonPath& path, const std::string& reason) const {
+    throw SceneError(place(path, locate(path)), reason);
+  }
+
+  [[noreturn]] void fail_at(std::size_t offset, const std::string& reason) const {
+    const JsonPath path =
+        walk_json(text_, offset, [](const JsonToken&, const JsonPath&) { return true; });
+    throw SceneError(place(path, offset), reason);
+  }
+
+  [[noreturn]] void report(const SceneProblem& problem, const Scene& scene) const {
+    JsonPath path = parse_dotted(problem.field);
+    if (problem.body >= 0)
+      path.insert(path.begin(), {PathStep{"bodies", -1}, PathStep{"", problem.body}});
+    SceneErrorPlace where = place(path, locate(path));
+    where.field = problem.field;  // as the engine named it
+    if (problem.body >= 0 && problem.body < static_cast<int>(scene.bodies.size()))
+      where.body_id = scene.bodies[static_cast<std::size_t>(problem.body)].id;
+    throw SceneError(where, problem.message);
+  }
+
+  // --- text level ----------------------------------------------------------------------------
+
+  Json parse_json() const {
+    Json root;
+    bool overflow = false;
+    try {
+      root = Json::parse(text_.begin(), text_.end());
+    } catch (const Json::parse_error& error) {
+      const std::size_t offset =
+          std::min<std::size_t>(error.byte > 0 ? error.byte - 1 : 0, text_.size());
+      if (is_nan_or_infinity(word_at(text_, offset)))
+        fail_at(offset, fmt::format("{} is not a JSON number; NaN and infinities are not allowed",
+                                    word_at(text_, offset)));
+      fail_at(offset, syntax_reason(error));
+    } catch (const Json::out_of_range&) {
+      overflow = true;  // located by check_tokens
+    }
+    check_tokens();
+    if (overflow) fail_at(0, "a number is out of range for a double");
+    return root;
+  }
+
+  // What the parser accepts silently but a scene must not: duplicate keys (the parser keeps the
+  // last, hiding the first) and numbers no double can hold.
+  void check_tokens() const {
+    JsonToken bad;
+    std::string reason;
+    walk_json(text_, text_.size(), [&](const JsonToken& token, const JsonPath& path) {
+      if (token.is_key && token.duplicate_key)
+        reason = fmt::format("duplicate key \"{}\"", path.back().key);
+      else if (!token.is_key && (text_[token.begin] == '-' ||
+                                 std::isdigit(static_cast<unsigned char>(text_[token.begin]))))
+        reason = number_problem(text_.substr(token.begin, token.end - token.begin));
+      bad = token;
+      return reason.empty();
+    });
+    if (!reason.empty()) {
+      // A key's error belongs to the key's path, which is the path at its end.
+      fail_at(bad.is_key ? bad.end : bad.begin, reason);
+    }
+  }
+
+  // --- values --------------------------------------------------------------------------------
+
+  const Json& object_at(const Json& value, const JsonPath& path) const {
+    if (!value.is_object()) fail(path, "must be an object {...}, got " + describe(value));
+    return value;
+  }
+
+  void allow_keys(const Json& object, const JsonPath& path,
+                  std::initializer_list<std::string_view> known) const {
+    for (const auto& [key, value] : object.items()) {
+      if (std::find(known.begin(), known.end(), key) == known.end())
+        fail(path + key,
+             fmt::format("unknown key \"{}\"; known keys are {}", key, quoted_list(known)));
+    }
+  }
+
+  const Json& required(const Json& object, const JsonPath& path, const char* key) const {
+    if (!object.contains(key)) fail(path + key, "missing; it is required");
+    return object[key];
+  }
+
+  double number_at(const Json& value, const JsonPath& path) const {
+    // Parsed JSON numbers are always finite: NaN, infinities and overflow fail in parse_json.
+    if (!value.is_number()) fail(path, "must be a number, got " + describe(value));
+    return value.get<double>();
+  }
+
+  double fraction_at(const Json& value, const JsonPath& path) const {
+    const double x = number_at(value, path);
+    if (!(x >= 0 && x <= 1)) fail(path, "must be in [0, 1], got " + describe(value));
+    return x;
+  }
+
+  Vec2d vec2_at(const Json& value, const JsonPath& path) const {
+    if (!value.is_array() || value.size() != 2)
+      fail(path, "must be an array [x, y] of 2 numbers, got " + describe(value));
+    return {number_at(value[0], path + 0), number_at(value[1], path + 1)};
+  }
+
+  bool bool_at(const Json& value, const JsonPath& path) const {
+    if (!value.is_boolean()) fail(path, "must be true or false, got " + describe(value));
+    return value.get<bool>();
+  }
+
+  std::string string_at(const Json& value, const JsonPath& path) const {
+    if (!value.is_string()) fail(path, "must be a string, got " + describe(value));
+    return value.get<std::string>();
+  }
+
+  // --- the scene -----------------------------------------------------------------------------
+
+  Scene read_scene(const Json& root) const {
+    const JsonPath top;
+    object_at(root, top);
+    // The format first: for a file that is not a scene, the other complaints would mislead.
+    const std::string format = string_at(required(root, top, "format"), top + "format");
+    if (format != kFormat)
+      fail(top + "format",
+           fmt::format("must be \"{}\", got {}", kFormat, describe(root["format"])));
+    allow_keys(root, top, {"format", "name", "world", "bodies", "run", "expect"});
+
+    Scene scene;
+    if (root.contains("name")) scene.name = string_at(root["name"], top + "name");
+    if (root.contains("world")) scene.world = read_world(root["world"], top + "world");
+    if (root.contains("run")) scene.run = read_run(root["run"], top + "run");
+
+    const JsonPath bodies_path = top + "bodies";
+    const Json& bodies = required(root, top, "bodies");
+    if (!bodies.is_array()) fail(bodies_path, "must be an array [...], got " + describe(bodies));
+    std::map<std::string, int> index_of_id;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const JsonPath path = bodies_path + static_cast<int>(i);
+      BodyDesc body = read_body(bodies[i], path);
+      const auto [it, fresh] = index_of_id.emplace(body.id, static_cast<int>(i));
+      if (!fresh)
+        fail(path + "id", fmt::format("duplicate id; bodies[{}] has it already", it->second));
+      scene.bodies.push_back(std::move(body));
+    }
+    return scene;
+  }
+
+  WorldDesc read_world(const Json& value, const JsonPath& path) const {
+    const Json& world = object_at(value, path);
+    allow_keys(world, path, {"gravity", "restitution"});
+    WorldDesc out;
+    if (world.contains("gravity")) out.gravity = vec2_at(world["gravity"], path + "gravity");
+    if (world.contains("restitution"))
+      out.restitution = fraction_at(world["restitution"], path + "restitution");
+    return out;
+  }
+
+  RunDesc read_run(const Json& value, const JsonPath& path) const {
+    const Json& run = object_at(value, path);
+    allow_keys(run, path, {"until", "max_events", "frames_per_second"});
+    RunDesc out;
+    if (run.contains("until")) {
+      out.until = number_at(run["until"], path + "until");
+      if (!(out.until > 0)) fail(path + "until", "must be positive, got " + describe(run["until"]));
+    }
+    if (run.contains("max_events"))
+      out.max_events = read_max_events(run["max_events"], path + "max_events");
+    if (run.contains("frames_per_second")) {
+      out.frames_per_second = number_at(run["frames_per_second"], path + "frames_per_second");
+      if (!(out.frames_per_second >= 0))
+        fail(path + "frames_per_second",
+             "must be 0 (no frames) or positive, got " + describe(run["frames_per_second"]));
+    }
+    return out;
+  }
+
+  std::uint64_t read_max_events(const Json& value, const JsonPath& path) const {
+    std::uint64_t n = 0;
+    if (value.is_number_unsigned()) {
+      n = value.get<std::uint64_t>();
+    } else if (value.is_number_float()) {
+      const double x = value.get<double>();
+      if (x >= 0 && x < kMaxEventsLimit && x == std::floor(x)) n = static_cast<std::uint64_t>(x);
+    }
+    if (n == 0) fail(path, "must be a positive integer, got " + describe(value));
+    return n;
+  }
+
+  BodyDesc read_body(const Json& value, const JsonPath& path) const {
+    const Json& body = object_at(value, path);
+    allow_keys(body, path,
+               {"id", "circle", "segment", "polygon", "position", "velocity", "acceleration",
+                "fixed", "mass", "gravity", "restitution"});
+    BodyDesc out;
+    out.id = string_at(required(body, path, "id"), path + "id");
+    if (out.id.empty()) fail(path + "id", "must not be empty");
+    read_shape(body, path, out);
+    if (body.contains("position")) out.position = vec2_at(body["position"], path + "position");
+    if (body.contains("fixed")) out.fixed = bool_at(body["fixed"], path + "fixed");
+    if (out.fixed) {
+      // Clearer than ignoring them: a fixed body never moves, so these would be silently lost.
+      for (const char* key : {"velocity", "acceleration", "mass"}) {
+        if (body.contains(key)) fail(path + key, "not allowed on a fixed body (it never moves)");
+      }
+    } else {
+      if (body.contains("velocity")) out.velocity = vec2_at(body["velocity"], path + "velocity");
+      if (body.contains("acceleration"))
+        out.acceleration = vec2_at(body["acceleration"], path + "acceleration");
+      if (!body.contains("mass")) fail(path + "mass", "missing; required unless \"fixed\": true");
+      out.mass = number_at(body["mass"], path + "mass");  // > 0 is validate_scene's to check
+    }
+    if (body.contains("gravity")) out.gravity = bool_at(body["gravity"], path + "gravity");
+    if (body.contains("restitution"))
+      out.restitution = fraction_at(body["restitution"], path + "restitution");
+    return out;
+  }
+
+  void read_shape(const Json& body, const JsonPath& path, BodyDesc& out) const {
+    std::vector<std::string> shapes;
+    for (const char* key : {"circle", "segment", "polygon"}) {
+      if (body.contains(key)) shapes.emplace_back(key);
+    }
+    if (shapes.empty())
+      fail(path, "no shape; give exactly one of \"circle\", \"segment\", \"polygon\"");
+    if (shapes.size() > 1)
+      fail(path + shapes[1],
+           fmt::format("a second shape; \"{}\" is given already, give exactly one", shapes[0]));
+    const JsonPath shape_path = path + shapes[0];
+    const Json& shape = object_at(body[shapes[0]], shape_path);
+    if (shapes[0] == "circle") {
+      allow_keys(shape, shape_path, {"radius"});
+      out.shape = ShapeKind::Circle;
+      out.radius = number_at(required(shape, shape_path, "radius"), shape_path + "radius");
+    } else if (shapes[0] == "segment") {
+      allow_keys(shape, shape_path, {"a", "b"});
+      out.shape = ShapeKind::Segment;
+      out.a = vec2_at(required(shape, shape_path, "a"), shape_path + "a");
+      out.b = vec2_at(required(shape, shape_path, "b"), shape_path + "b");
+    } else {
+      allow_keys(shape, shape_path, {"vertices"});
+      out.shape = ShapeKind::Polygon;
+      const JsonPath vertices_path = shape_path + "vertices";
+      const Json& vertices = required(shape, shape_path, "vertices");
+      if (!vertices.is_array())
+        fail(vertices_path, "must be an array [[x, y], ...], got " + describe(vertices));
+      for (std::size_t i = 0; i < vertices.size(); ++i)
+        out.vertices.push_back(vec2_at(vertices[i], vertices_path + static_cast<int>(i)));
+    }
+  }
+
+  std::string_view text_;
+  std::string origin_;
+};
+
+}  // namespace
+
+LoadedScene parse_scene(std::string_view text, const std::string& origin) {
+  return SceneReader(text, origin.empty() ? "<string>" : origin).read();
+}
+
+LoadedScene read_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path, fmt::format("cannot open: {}", std::strerror(errno)));
+  std::string text;
+  try {
+    // libstdc++ reports a read error (say, of a directory) by throwing from the iterator.
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::ios_base::failure&) {
+    in.setstate(std::ios::badbit);
+  }
+  if (in.bad()) throw SceneError(path, fmt::format("cannot read: {}", std::strerror(errno)));
+  return parse_scene(text, path);
+}
+
+}  // namespace pge

@@ -1,0 +1,39 @@
+// Deterministic scene families: the same parameters and seed give the same scene, bit for bit,
+// on every machine (integer PRNG, exactly rounded arithmetic only).
+#pragma once
+
+#include "pge/scene.hpp"
+
+#include <cstdint>
+
+namespace pge {
+
+// A small, fast, well-mixed 64-bit generator (splitmix64). Integer only: portable.
+class SplitMix64 {
+ public:
+  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next();
+  // Uniform in [0, 1) with 53 random bits.
+  double uniform();
+  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+
+ private:
+  std::uint64_t state_;
+};
+
+struct GasParams {
+  std::uint32_t bodies = 1000;
+  double radius = 0.01;
+  double area_fraction = 0.3;   // total disc area / box area
+  double speed = 1;             // velocity components uniform in [-speed, speed]
+  double gravity = 0;           // downward; 0 for a free gas
+  double until = 10;
+  std::uint64_t max_events = 100000;
+  std::uint64_t seed = 1;
+};
+
+// Equal discs of unit mass in a square box of four fixed segments, on a jittered grid so that
+// no two overlap; elastic (restitution 1).
+Scene make_gas(const GasParams& params);
+
+}  // namespace pge

@@ -1,0 +1,520 @@
+// Scene files: exact round trips, defaults, and an error naming file, body and field for every
+// kind of bad input.
+#include "pge/scene_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+namespace pge {
+namespace {
+
+constexpr const char* kOrigin = "scenes/bad.json";
+
+// ---- bitwise scene comparison ------------------------------------------------------------------
+
+std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
+void expect_same(double x, double y, const std::string& what) {
+  EXPECT_EQ(bits(x), bits(y)) << what << ": " << x << " vs " << y;
+}
+void expect_same(const Vec2d& u, const Vec2d& v, const std::string& what) {
+  expect_same(u.x, v.x, what + ".x");
+  expect_same(u.y, v.y, what + ".y");
+}
+
+void expect_same_scene(const Scene& s, const Scene& t) {
+  EXPECT_EQ(s.name, t.name);
+  expect_same(s.world.gravity, t.world.gravity, "world.gravity");
+  expect_same(s.world.restitution, t.world.restitution, "world.restitution");
+  expect_same(s.run.until, t.run.until, "run.until");
+  EXPECT_EQ(s.run.max_events, t.run.max_events);
+  expect_same(s.run.frames_per_second, t.run.frames_per_second, "run.frames_per_second");
+  ASSERT_EQ(s.bodies.size(), t.bodies.size());
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const BodyDesc& b = s.bodies[i];
+    const BodyDesc& c = t.bodies[i];
+    const std::string at = "bodies[" + std::to_string(i) + "].";
+    EXPECT_EQ(b.id, c.id) << at;
+    EXPECT_EQ(b.shape, c.shape) << at;
+    expect_same(b.radius, c.radius, at + "radius");
+    expect_same(b.a, c.a, at + "a");
+    expect_same(b.b, c.b, at + "b");
+    ASSERT_EQ(b.vertices.size(), c.vertices.size()) << at;
+    for (std::size_t k = 0; k < b.vertices.size(); ++k)
+      expect_same(b.vertices[k], c.vertices[k], at + "vertices[" + std::to_string(k) + "]");
+    expect_same(b.position, c.position, at + "position");
+    expect_same(b.velocity, c.velocity, at + "velocity");
+    expect_same(b.acceleration, c.acceleration, at + "acceleration");
+    EXPECT_EQ(b.fixed, c.fixed) << at;
+    expect_same(b.mass, c.mass, at + "mass");
+    EXPECT_EQ(b.gravity, c.gravity) << at;
+    expect_same(b.restitution, c.restitution, at + "restitution");
+  }
+}
+
+// ---- round trips ---------------------------------------------------------------------------
+
+constexpr double kMax = std::numeric_limits<double>::max();          // 1.7976931348623157e308
+constexpr double kTiny = std::numeric_limits<double>::denorm_min();  // 5e-324
+constexpr double kThird = 1.0 / 3.0;
+
+Scene awkward_scene() {
+  Scene s;
+  s.name = "awkward \"doubles\"\n";
+  s.world.gravity = {-0.0, -9.81};
+  s.world.restitution = 0.1;
+  s.run.until = 1e300;
+  s.run.max_events = std::numeric_limits<std::uint64_t>::max();
+  s.run.frames_per_second = kThird;
+
+  BodyDesc ball;
+  ball.id = "ball";
+  ball.radius = 0.1;
+  ball.position = {0.1, -0.0};
+  ball.velocity = {kMax, -kMax};
+  ball.acceleration = {kTiny, -0.0};
+  ball.mass = kTiny;
+  ball.restitution = -0.0;  // in [0, 1], and must stay negative zero
+  s.bodies.push_back(ball);
+
+  BodyDesc big;
+  big.id = "big";
+  big.radius = kThird;
+  big.position = {1e300, 2.2250738585072014e-308};  // the smallest normal double
+  big.mass = kMax;
+  big.gravity = false;
+  big.restitution = 1;
+  s.bodies.push_back(big);
+
+  BodyDesc floor;
+  floor.id = "floor";
+  floor.shape = ShapeKind::Segment;
+  floor.a = {-0.0, kTiny};
+  floor.b = {kThird, 0.1};
+  floor.position = {-1e300, -kTiny};
+  floor.fixed = true;
+  floor.gravity = false;
+  s.bodies.push_back(floor);
+
+  BodyDesc box;
+  box.id = "box";
+  box.shape = ShapeKind::Polygon;
+  box.vertices = {{-0.1, -0.1}, {0.1, -0.1}, {0.1, 0.1}, {-kThird, 0.1}};
+  box.position = {5, 1e-300};
+  box.mass = 0.30000000000000004;
+  s.bodies.push_back(box);
+  return s;
+}
+
+TEST(SceneIo, RoundTripIsBitExact) {
+  const Scene s = awkward_scene();
+  const std::string expect = R"({ "events": [ {"time": 0.1, "kind": "hit"} ],
+  "note": "kept as written" })";
+  const std::string text = write_scene(s, expect);
+  const LoadedScene back = parse_scene(text, "roundtrip.json");
+  expect_same_scene(s, back.scene);
+  EXPECT_EQ(back.expect_json, expect);
+  EXPECT_EQ(back.path, "roundtrip.json");
+  // Writing what was read gives the same text: the writer is deterministic.
+  EXPECT_EQ(write_scene(back.scene, back.expect_json), text);
+}
+
+TEST(SceneIo, AwkwardDoublesAreWrittenInShortestForm) {
+  const std::string text = write_scene(awkward_scene());
+  for (const char* literal : {"0.1", "-0.0", "5e-324", "1.7976931348623157e+308",
+                              "0.3333333333333333", "1e+300", "18446744073709551615"})
+    EXPECT_NE(text.find(literal), std::string::npos) << literal << " not in\n" << text;
+}
+
+TEST(SceneIo, RoundTripOfEmptyScene) {
+  const Scene s;
+  const LoadedScene back = parse_scene(write_scene(s), "empty.json");
+  expect_same_scene(s, back.scene);
+  EXPECT_EQ(back.expect_json, "");
+}
+
+TEST(SceneIo, FileRoundTrip) {
+  const auto path = std::filesystem::temp_directory_path() / "pge_test_scene_io.json";
+  const Scene s = awkward_scene();
+  write_scene_file(s, path.string(), R"({"a": 1})");
+  const LoadedScene back = read_scene_file(path.string());
+  std::filesystem::remove(path);
+  expect_same_scene(s, back.scene);
+  EXPECT_EQ(back.expect_json, R"({"a": 1})");
+  EXPECT_EQ(back.path, path.string());
+}
+
+TEST(SceneIo, WriteRejectsAnExpectBlockThatIsNotAnObject) {
+  EXPECT_THROW(write_scene(Scene{}, "[1, 2]"), std::invalid_argument);
+  EXPECT_THROW(write_scene(Scene{}, "{\"a\": "), std::invalid_argument);
+}
+
+TEST(SceneIo, Defaults) {
+  const LoadedScene loaded = parse_scene(R"({"format": "pge-scene/1", "bodies": [
+      {"id": "b", "circle": {"radius": 1}, "mass": 2},
+      {"id": "wall", "segment": {"a": [5, 0], "b": [5, 1]}, "fixed": true}]})",
+                                         "defaults.json");
+  const Scene& s = loaded.scene;
+  EXPECT_EQ(s.name, "");
+  expect_same(s.world.gravity, {0, 0}, "world.gravity");
+  expect_same(s.world.restitution, 1, "world.restitution");
+  expect_same(s.run.until, 10, "run.until");
+  EXPECT_EQ(s.run.max_events, 1000000u);
+  expect_same(s.run.frames_per_second, 0, "run.frames_per_second");
+  ASSERT_EQ(s.bodies.size(), 2u);
+  const BodyDesc& b = s.bodies[0];
+  EXPECT_EQ(b.shape, ShapeKind::Circle);
+  expect_same(b.position, {0, 0}, "position");
+  expect_same(b.velocity, {0, 0}, "velocity");
+  expect_same(b.acceleration, {0, 0}, "acceleration");
+  EXPECT_FALSE(b.fixed);
+  EXPECT_TRUE(b.gravity);
+  expect_same(b.mass, 2, "mass");
+  expect_same(b.restitution, -1, "restitution");
+  EXPECT_TRUE(s.bodies[1].fixed);
+  expect_same(s.bodies[1].mass, 1, "fixed body mass");
+  EXPECT_EQ(loaded.expect_json, "");
+}
+
+TEST(SceneIo, MaxEventsMayBeAnIntegralFloat) {
+  const LoadedScene loaded = parse_scene(
+      R"({"format": "pge-scene/1", "bodies": [], "run": {"max_events": 1e6}})", "x.json");
+  EXPECT_EQ(loaded.scene.run.max_events, 1000000u);
+}
+
+TEST(SceneIo, ExpectBlockIsKeptVerbatim) {
+  const std::string expect = "{\n    \"b\": [1.50, 2e0],\n    \"a\": {}\n  }";
+  const LoadedScene loaded = parse_scene(
+      "{\"format\": \"pge-scene/1\", \"bodies\": [],\n  \"expect\": " + expect + "\n}", "x.json");
+  EXPECT_EQ(loaded.expect_json, expect);
+}
+
+// ---- errors --------------------------------------------------------------------------------
+
+// A body of a valid scene, to splice broken bits into.
+std::string scene_with_bodies(const std::string& bodies) {
+  return R"({"format": "pge-scene/1", "bodies": [)" + bodies + "]}";
+}
+std::string scene_with_body(const std::string& body) { return scene_with_bodies(body); }
+
+// Parses `text`, which must fail, and checks that the one-line message names the file, the body
+// (when `body_id` is not empty) and the field (when `field` is not empty), plus a part of the
+// reason.
+SceneError parse_error(const std::string& text, const std::string& body_id,
+                       const std::string& field, const std::string& reason_part) {
+  try {
+    parse_scene(text, kOrigin);
+  } catch (const SceneError& error) {
+    const std::string what = error.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    EXPECT_EQ(what.rfind(kOrigin, 0), 0u) << what;
+    EXPECT_EQ(error.file(), kOrigin);
+    if (!body_id.empty()) {
+      EXPECT_NE(what.find("body \"" + body_id + "\" (bodies["), std::string::npos) << what;
+      EXPECT_EQ(error.body_id(), body_id) << what;
+      EXPECT_GE(error.body_index(), 0) << what;
+    }
+    if (!field.empty()) {
+      EXPECT_NE(what.find("field \"" + field + "\""), std::string::npos) << what;
+      EXPECT_EQ(error.field(), field) << what;
+    }
+    EXPECT_NE(error.reason().find(reason_part), std::string::npos) << what;
+    EXPECT_NE(what.find(error.reason()), std::string::npos) << what;
+    return error;
+  }
+  ADD_FAILURE() << "no error for: " << text;
+  return SceneError(kOrigin, "none");
+}
+
+const std::string kBall = R"({"id": "ball", "circle": {"radius": 1}, "mass": 1})";
+
+TEST(SceneErrors, MessageHasEveryPart) {
+  const SceneError e = parse_error(scene_with_bodies(kBall + ",\n" +
+                                                     R"({"id": "cue", "circle": {"radius": 1},
+                                                        "position": [5, 0], "mass": "heavy"})"),
+                                   "cue", "mass", "must be a number");
+  EXPECT_EQ(e.body_index(), 1);
+  EXPECT_EQ(e.line(), 3);  // the line of the bad value
+  EXPECT_GT(e.column(), 0);
+  EXPECT_EQ(std::string(e.what()).rfind("scenes/bad.json:3:", 0), 0u) << e.what();
+  EXPECT_NE(
+      std::string(e.what()).find("body \"cue\" (bodies[1]): field \"mass\": must be a number"),
+      std::string::npos)
+      << e.what();
+}
+
+TEST(SceneErrors, NanLiteralInRadius) {
+  const SceneError e = parse_error(
+      "{\"format\": \"pge-scene/1\",\n \"bodies\": [\n  {\"id\": \"ball\", \"circle\": "
+      "{\"radius\": NaN}, \"mass\": 1}]}",
+      "ball", "circle.radius", "NaN");
+  EXPECT_EQ(e.line(), 3);
+  EXPECT_EQ(e.column(), 39);  // at the N
+}
+
+TEST(SceneErrors, NanLiteralBeforeTheId) {
+  // The id comes after the error; the tokenizer reads on to find it.
+  parse_error(scene_with_body(R"({"circle": {"radius": nan}, "id": "late", "mass": 1})"), "late",
+              "circle.radius", "NaN");
+}
+
+TEST(SceneErrors, InfinityLiteral) {
+  parse_error(scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1,
+                                  "velocity": [0, -Infinity]})"),
+              "ball", "velocity[1]", "not a JSON number");
+}
+
+TEST(SceneErrors, TruncatedFile) {
+  const std::string text =
+      scene_with_bodies(kBall + R"(, {"id": "cut", "circle": {"radius": 1}, "position": [3, )");
+  const SceneError e =
+      parse_error(text.substr(0, text.size() - 2), "cut", "position[1]", "syntax error");
+  EXPECT_EQ(e.line(), 1);
+  EXPECT_EQ(e.column(), static_cast<int>(text.size() - 2 + 1));
+}
+
+TEST(SceneErrors, SyntaxErrorInsideWorld) {
+  parse_error(R"({"format": "pge-scene/1", "world": {"gravity": [0, -9.81,]}, "bodies": []})", "",
+              "world.gravity[2]", "syntax error");
+}
+
+TEST(SceneErrors, EmptyText) {
+  const SceneError e = parse_error("", "", "", "syntax error");
+  EXPECT_EQ(e.line(), 1);
+}
+
+TEST(SceneErrors, NumberOverflow) {
+  const SceneError e =
+      parse_error(scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1e400})"),
+                  "ball", "mass", "out of range");
+  EXPECT_NE(e.reason().find("1e400"), std::string::npos);
+  EXPECT_GT(e.line(), 0);
+  parse_error(R"({"format": "pge-scene/1", "world": {"gravity": [0, -1e999]}, "bodies": []})", "",
+              "world.gravity[1]", "overflow");
+}
+
+TEST(SceneErrors, NumberUnderflowToZero) {
+  parse_error(scene_with_body(R"({"id": "ball", "circle": {"radius": 1e-400}, "mass": 1})"), "ball",
+              "circle.radius", "read as 0");
+}
+
+TEST(SceneErrors, SubnormalsAreFine) {
+  EXPECT_NO_THROW(
+      parse_scene(scene_with_body(R"({"id": "b", "circle": {"radius": 3e-324}, "mass": 1})"), "x"));
+}
+
+TEST(SceneErrors, WrongTypes) {
+  parse_error(scene_with_body(R"({"id": "ball", "circle": {"radius": "big"}, "mass": 1})"), "ball",
+              "circle.radius", "must be a number");
+  parse_error(
+      scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "fixed": "no"})"),
+      "ball", "fixed", "true or false");
+  parse_error(
+      scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "gravity": 1})"),
+      "ball", "gravity", "true or false");
+  parse_error(scene_with_body(R"({"id": "ball", "circle": 1, "mass": 1})"), "ball", "circle",
+              "must be an object");
+  parse_error(scene_with_body(
+                  R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "velocity": [1, true]})"),
+              "ball", "velocity[1]", "must be a number");
+  parse_error(R"({"format": "pge-scene/1", "name": 5, "bodies": []})", "", "name",
+              "must be a string");
+  parse_error(R"({"format": "pge-scene/1", "world": [], "bodies": []})", "", "world",
+              "must be an object");
+  parse_error(R"({"format": "pge-scene/1", "bodies": {}})", "", "bodies", "must be an array");
+  parse_error(R"([1, 2])", "", "", "must be an object");
+  const SceneError e = parse_error(scene_with_body("7"), "", "", "must be an object");
+  EXPECT_EQ(e.body_index(), 0);
+  EXPECT_NE(std::string(e.what()).find("body bodies[0]: must be an object"), std::string::npos)
+      << e.what();
+}
+
+TEST(SceneErrors, UnreadableIdStillNamesTheBodyIndex) {
+  const SceneError e =
+      parse_error(scene_with_body(R"({"id": 5, "circle": {"radius": 1}, "mass": 1})"), "", "id",
+                  "must be a string");
+  EXPECT_EQ(e.body_index(), 0);
+  EXPECT_EQ(e.body_id(), "");
+  EXPECT_NE(std::string(e.what()).find("body bodies[0]: field \"id\""), std::string::npos)
+      << e.what();
+}
+
+TEST(SceneErrors, MissingRequiredKeys) {
+  parse_error(R"({"bodies": []})", "", "format", "missing");
+  parse_error(R"({"format": "pge-scene/1"})", "", "bodies", "missing");
+  const SceneError e =
+      parse_error(scene_with_body(R"({"circle": {"radius": 1}, "mass": 1})"), "", "id", "missing");
+  EXPECT_EQ(e.body_index(), 0);
+  parse_error(scene_with_body(R"({"id": "ball", "circle": {"radius": 1}})"), "ball", "mass",
+              "missing");
+  parse_error(scene_with_body(R"({"id": "ball", "circle": {}, "mass": 1})"), "ball",
+              "circle.radius", "missing");
+  parse_error(scene_with_body(R"({"id": "s", "segment": {"a": [0, 0]}, "fixed": true})"), "s",
+              "segment.b", "missing");
+  parse_error(scene_with_body(R"({"id": "p", "polygon": {}, "mass": 1})"), "p", "polygon.vertices",
+              "missing");
+}
+
+TEST(SceneErrors, UnknownKeysAnywhere) {
+  parse_error(R"({"format": "pge-scene/1", "bodies": [], "gravity": [0, 1]})", "", "gravity",
+              "unknown key \"gravity\"");
+  parse_error(
+      scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "colour": "red"})"),
+      "ball", "colour", "unknown key \"colour\"");
+  parse_error(scene_with_body(R"({"id": "ball", "circle": {"radius": 1, "r": 2}, "mass": 1})"),
+              "ball", "circle.r", "unknown key \"r\"");
+  parse_error(R"({"format": "pge-scene/1", "world": {"g": [0, 1]}, "bodies": []})", "", "world.g",
+              "unknown key");
+  parse_error(R"({"format": "pge-scene/1", "run": {"until": 1, "steps": 3}, "bodies": []})", "",
+              "run.steps", "unknown key");
+}
+
+TEST(SceneErrors, DuplicateKey) {
+  parse_error(scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "mass": 2})"),
+              "ball", "mass", "duplicate key");
+}
+
+TEST(SceneErrors, WrongFormat) {
+  parse_error(R"({"format": "pge-scene/2", "bodies": []})", "", "format", "pge-scene/1");
+  parse_error(R"({"format": 1, "bodies": []})", "", "format", "must be a string");
+}
+
+TEST(SceneErrors, DuplicateIds) {
+  const SceneError e = parse_error(
+      scene_with_bodies(
+          kBall + R"(, {"id": "ball", "circle": {"radius": 1}, "position": [9, 0], "mass": 1})"),
+      "ball", "id", "bodies[0]");
+  EXPECT_EQ(e.body_index(), 1);
+}
+
+TEST(SceneErrors, EmptyId) {
+  parse_error(scene_with_body(R"({"id": "", "circle": {"radius": 1}, "mass": 1})"), "", "id",
+              "empty");
+}
+
+TEST(SceneErrors, ShapeCount) {
+  const SceneError none =
+      parse_error(scene_with_body(R"({"id": "blob", "mass": 1})"), "blob", "", "no shape");
+  EXPECT_EQ(none.field(), "");  // there is no key to name; the body is named
+  parse_error(
+      scene_with_body(
+          R"({"id": "two", "circle": {"radius": 1}, "polygon": {"vertices": []}, "mass": 1})"),
+      "two", "polygon", "second shape");
+}
+
+TEST(SceneErrors, VectorLength) {
+  parse_error(
+      scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "position": [1]})"),
+      "ball", "position", "2 numbers");
+  parse_error(scene_with_body(
+                  R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "velocity": [1, 2, 3]})"),
+              "ball", "velocity", "2 numbers");
+  parse_error(
+      scene_with_body(R"({"id": "p", "polygon": {"vertices": [[0, 0], [1, 0], [1]]}, "mass": 1})"),
+      "p", "polygon.vertices[2]", "2 numbers");
+  parse_error(R"({"format": "pge-scene/1", "world": {"gravity": 9.81}, "bodies": []})", "",
+              "world.gravity", "2 numbers");
+}
+
+TEST(SceneErrors, MaxEvents) {
+  for (const char* bad : {"1.5", "-3", "0", "\"10\"", "1e30"})
+    parse_error(std::string(R"({"format": "pge-scene/1", "bodies": [], "run": {"max_events": )") +
+                    bad + "}}",
+                "", "run.max_events", "positive integer");
+}
+
+TEST(SceneErrors, RunRanges) {
+  parse_error(R"({"format": "pge-scene/1", "bodies": [], "run": {"until": 0}})", "", "run.until",
+              "positive");
+  parse_error(R"({"format": "pge-scene/1", "bodies": [], "run": {"frames_per_second": -1}})", "",
+              "run.frames_per_second", "positive");
+}
+
+TEST(SceneErrors, MotionOnAFixedBody) {
+  for (const char* key : {"velocity", "acceleration"})
+    parse_error(scene_with_body(std::string(R"({"id": "wall", "segment": {"a": [0, 0], "b": [1, 0]},
+                                                 "fixed": true, ")") +
+                                key + R"(": [1, 0]})"),
+                "wall", key, "fixed body");
+  parse_error(
+      scene_with_body(
+          R"({"id": "wall", "segment": {"a": [0, 0], "b": [1, 0]}, "fixed": true, "mass": 3})"),
+      "wall", "mass", "fixed body");
+}
+
+TEST(SceneErrors, RestitutionRange) {
+  parse_error(
+      scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "restitution": 1.5})"),
+      "ball", "restitution", "[0, 1]");
+  parse_error(
+      scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "restitution": -0.1})"),
+      "ball", "restitution", "[0, 1]");
+  parse_error(R"({"format": "pge-scene/1", "world": {"restitution": 2}, "bodies": []})", "",
+              "world.restitution", "[0, 1]");
+}
+
+TEST(SceneErrors, SyntaxErrorInExpectBlock) {
+  parse_error(R"({"format": "pge-scene/1", "bodies": [], "expect": {"final": {"t": 1,, }}})", "",
+              "expect.final", "syntax error");
+}
+
+TEST(SceneErrors, ExpectMustBeAnObject) {
+  parse_error(R"({"format": "pge-scene/1", "bodies": [], "expect": [1]})", "", "expect",
+              "must be an object");
+}
+
+// These come from validate_scene (engine), under the field names agreed with it.
+TEST(SceneErrors, NegativeRadius) {
+  const SceneError e = parse_error(
+      scene_with_bodies(kBall + ",\n" +
+                        R"({"id": "ID", "circle": {"radius": -1}, "position": [9, 9], "mass": 1})"),
+      "ID", "circle.radius", "-1");
+  EXPECT_EQ(e.body_index(), 1);
+  EXPECT_EQ(e.line(), 2);
+}
+
+TEST(SceneErrors, NonPositiveMass) {
+  parse_error(scene_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 0})"), "ball",
+              "mass", "positive");
+}
+
+TEST(SceneErrors, ClockwisePolygon) {
+  parse_error(
+      scene_with_body(
+          R"({"id": "cw", "polygon": {"vertices": [[0, 0], [0, 1], [1, 1], [1, 0]]}, "mass": 1})"),
+      "cw", "polygon.vertices[1]", "clockwise");
+}
+
+TEST(SceneErrors, DegenerateSegment) {
+  parse_error(
+      scene_with_body(R"({"id": "dot", "segment": {"a": [1, 1], "b": [1, 1]}, "fixed": true})"),
+      "dot", "segment", "zero length");
+}
+
+TEST(SceneErrors, OverlapAtStart) {
+  parse_error(
+      scene_with_bodies(
+          kBall + R"(, {"id": "twin", "circle": {"radius": 1}, "position": [0.5, 0], "mass": 1})"),
+      "twin", "position", "overlaps");
+}
+
+TEST(SceneErrors, UnreadableFile) {
+  const std::string path = "/nonexistent/dir/scene.json";
+  try {
+    read_scene_file(path);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& error) {
+    EXPECT_EQ(error.file(), path);
+    EXPECT_EQ(std::string(error.what()).rfind(path + ": ", 0), 0u) << error.what();
+  }
+  EXPECT_THROW(read_scene_file(std::filesystem::temp_directory_path().string()), SceneError);
+}
+
+}  // namespace
+}  // namespace pge
