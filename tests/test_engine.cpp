@@ -293,3 +293,38 @@ TEST(Engine, TimersAndFramesAreOrderedAfterCollisionsAtTheSameTime) {
 
 }  // namespace
 }  // namespace pge
+
+namespace pge {
+namespace {
+
+// Resting contact is not yet a contact state (planned with the hard-scene work): a ball lying
+// on a floor under gravity touches it with zero normal speed while gravity presses it in, so
+// the contact is predicted again and again at t = 0. The engine must not hang: it reports a
+// storm naming the two bodies and the time, after kStormCollisions + 1 contacts.
+TEST(Engine, RestingBallIsReportedAsAStormNotAHang) {
+  World<double> w(make_scene({wall("floor", {-5, 0}, {5, 0}), circle("ball", 1, {0, 1}, {0, 0})}, 10, {0, -9.81}));
+  EXPECT_EQ(w.run(), StopReason::EventStorm);
+  EXPECT_EQ(w.storm().a, 0u);
+  EXPECT_EQ(w.storm().b, 1u);
+  EXPECT_EQ(w.storm().time, 0.0);
+  EXPECT_EQ(w.storm().collisions, kStormCollisions + 1);
+}
+
+// A Zeno bounce: a ball dropped from height h = 2 (centre at 3, radius 1) with restitution
+// e = 1/2 under g = 9.81 lands at t1 = sqrt(2 h / g); each bounce then lasts e times the one
+// before, starting at 2 e sqrt(2 g h) / g = 2 e t1, so the bounces end at
+// t1 (1 + 2e / (1 - e)) = 3 t1. The engine cannot go past that point without resting contact;
+// it must stop there with a storm report, not hang, and the energy it has left is the
+// potential energy at rest, m g r = 9.81.
+TEST(Engine, ZenoBounceEndsInAStormAtTheAccumulationTime) {
+  BodyDesc ball = circle("ball", 1, {0, 3}, {0, 0});
+  ball.restitution = 0.5;
+  World<double> w(make_scene({wall("floor", {-5, 0}, {5, 0}), ball}, 10, {0, -9.81}));
+  EXPECT_EQ(w.run(), StopReason::EventStorm);
+  const double t1 = std::sqrt(2 * 2 / 9.81);
+  EXPECT_NEAR(w.storm().time, 3 * t1, 1e-9);
+  EXPECT_NEAR(w.kinetic_energy() + w.potential_energy(), 9.81, 1e-9);
+}
+
+}  // namespace
+}  // namespace pge
