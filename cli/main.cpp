@@ -50,6 +50,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--json", run.json_summary, "Also write the summaries as a JSON array to FILE");
   run_cmd->add_option("--scalar", scalar, "Number type: float, double, long-double, quad")
       ->check(CLI::IsMember({"float", "double", "long-double", "quad"}));
+  std::string solver;
+  run_cmd->add_option("--solver", solver, "Root solver: fast, robust, certified (default: each scene's run.solver)")
+      ->check(CLI::IsMember({"fast", "robust", "certified"}));
   run_cmd->add_flag("--quiet,-q", run.quiet, "Print no summary (errors still go to stderr)");
   run_cmd->add_flag("--progress", run.progress, "Show progress on stderr (default: only when stderr is a terminal)");
 
@@ -84,6 +87,11 @@ int main(int argc, char** argv) {
   try {
     if (run_cmd->parsed()) {
       pge::parse_scalar_kind(scalar, run.scalar);
+      if (!solver.empty()) {
+        pge::SolverKind kind{};
+        pge::parse_solver_kind(solver, kind);
+        run.solver = kind;
+      }
       if (!run.progress) run.progress = isatty(fileno(stderr)) != 0 && !run.quiet;
       return run_command(run);
     }

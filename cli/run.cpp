@@ -50,10 +50,11 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   wo.until = opt.until;
   wo.max_events = opt.max_events;
   wo.frames_per_second = opt.frames;
+  wo.solver = opt.solver;
   World<T> world(scene, wo);
 
   if (trace) {
-    trace->header(scene, scalar_name(ScalarTraits<T>::kind), to_double(world.horizon()));
+    trace->header(scene, scalar_name(ScalarTraits<T>::kind), solver_name(world.solver()), to_double(world.horizon()));
     world.on_collision([&](const CollisionInfo<T>& c) { trace->collision(scene, c); });
     world.on_frame([&](const World<T>& w, T t) { trace->frame(w, t); });
   }
@@ -87,7 +88,7 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   j["name"] = scene.name;
   j["bodies"] = scene.bodies.size();
   j["scalar"] = scalar_name(ScalarTraits<T>::kind);
-  j["solver"] = "robust";
+  j["solver"] = solver_name(world.solver());
   j["stop"] = stop_reason_name(world.stop_reason());
   j["time"] = to_double(world.time());
   j["horizon"] = to_double(world.horizon());
@@ -124,8 +125,8 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   if (!opt.quiet) {
     const double e0 = start.kinetic + start.potential, e1 = end.kinetic + end.potential;
     const double de = e1 - e0;
-    fmt::print("scene {} (\"{}\"): {} bodies, scalar {}, solver robust\n", loaded.path, scene.name, scene.bodies.size(),
-               scalar_name(ScalarTraits<T>::kind));
+    fmt::print("scene {} (\"{}\"): {} bodies, scalar {}, solver {}\n", loaded.path, scene.name, scene.bodies.size(),
+               scalar_name(ScalarTraits<T>::kind), solver_name(world.solver()));
     fmt::print("  stopped: {} at t = {:.17g} (horizon {:.17g})\n", stop_reason_name(world.stop_reason()),
                to_double(world.time()), to_double(world.horizon()));
     fmt::print("  events: {} collisions ({} by the overlap rule), {} grazes, {} timers, {} frames\n", n.collisions,

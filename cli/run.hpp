@@ -1,9 +1,11 @@
 // `pge run`: simulate scenes, print a summary, write event traces.
 #pragma once
 
+#include "pge/roots.hpp"
 #include "pge/scalar.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,7 @@ struct RunOptions {
   std::string trace_dir;            // several scenes: DIR/<scene file stem>.jsonl
   std::string json_summary;         // all summaries as one JSON array
   ScalarKind scalar = ScalarKind::Double;
+  std::optional<SolverKind> solver;  // nothing: each scene's run.solver
   bool quiet = false;               // no summary on stdout (errors still go to stderr)
   bool progress = false;            // progress line on stderr (default: when it is a terminal)
 };

@@ -28,10 +28,10 @@ bool TraceWriter::close() {
   return true;
 }
 
-void TraceWriter::header(const Scene& scene, std::string_view scalar, double horizon) {
-  fmt::print(file_, "{{\"format\":\"pge-trace/1\",\"scene\":{},\"scalar\":\"{}\",\"solver\":\"robust\",\"until\":{},"
+void TraceWriter::header(const Scene& scene, std::string_view scalar, std::string_view solver, double horizon) {
+  fmt::print(file_, "{{\"format\":\"pge-trace/1\",\"scene\":{},\"scalar\":\"{}\",\"solver\":\"{}\",\"until\":{},"
              "\"bodies\":[",
-             quoted(scene.name), scalar, horizon);
+             quoted(scene.name), scalar, solver, horizon);
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) fmt::print(file_, "{}{}", i ? "," : "", quoted(scene.bodies[i].id));
   fmt::print(file_, "]}}\n");
 }

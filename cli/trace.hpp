@@ -25,7 +25,7 @@ class TraceWriter {
   bool close();  // false if anything failed to write
   const std::string& error() const { return error_; }
 
-  void header(const Scene& scene, std::string_view scalar, double horizon);
+  void header(const Scene& scene, std::string_view scalar, std::string_view solver, double horizon);
 
   template <class T> void collision(const Scene& scene, const CollisionInfo<T>& c) {
     fmt::print(file_,

@@ -35,6 +35,7 @@ void expect_same_scene(const Scene& s, const Scene& t) {
   expect_same(s.run.until, t.run.until, "run.until");
   EXPECT_EQ(s.run.max_events, t.run.max_events);
   expect_same(s.run.frames_per_second, t.run.frames_per_second, "run.frames_per_second");
+  EXPECT_EQ(s.run.solver, t.run.solver) << "run.solver";
   ASSERT_EQ(s.bodies.size(), t.bodies.size());
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     const BodyDesc& b = s.bodies[i];
@@ -72,6 +73,7 @@ Scene awkward_scene() {
   s.run.until = 1e300;
   s.run.max_events = std::numeric_limits<std::uint64_t>::max();
   s.run.frames_per_second = kThird;
+  s.run.solver = SolverKind::Certified;
 
   BodyDesc ball;
   ball.id = "ball";
@@ -432,6 +434,8 @@ TEST(SceneErrors, MaxEvents) {
 TEST(SceneErrors, RunRanges) {
   parse_error(R"({"format": "pge-scene/1", "bodies": [], "run": {"until": 0}})", "", "run.until",
               "positive");
+  parse_error(R"({"format": "pge-scene/1", "bodies": [], "run": {"solver": "newton"}})", "",
+              "run.solver", "certified");
   parse_error(R"({"format": "pge-scene/1", "bodies": [], "run": {"frames_per_second": -1}})", "",
               "run.frames_per_second", "positive");
 }

@@ -58,13 +58,13 @@ template <class T> Poly<T> distance_poly(const Vec2<T>& d, const Vec2<T>& dv, co
 
 // Earliest approaching contact of two points at distance r, relative time in [0, horizon].
 template <class T>
-std::optional<RootOutcome<T>> point_contact(const Vec2<T>& d, const Vec2<T>& dv, const Vec2<T>& da, const T& r,
+std::optional<RootOutcome<T>> point_contact(SolverKind solver, const Vec2<T>& d, const Vec2<T>& dv, const Vec2<T>& da, const T& r,
                                             const T& horizon) {
   const Poly<T> p = distance_poly(d, dv, da, r);
   // Without relative acceleration the function is a convex parabola: if it is not decreasing
   // now it never will be, so most pairs of a gas are dismissed here without a solve.
   if (p.degree == 2 && p.c[1] >= T(0)) return std::nullopt;
-  const RootOutcome<T> root = earliest_downward_root(p, T(0), horizon);
+  const RootOutcome<T> root = earliest_downward_root(solver, p, T(0), horizon);
   if (root.status != RootStatus::Root) return std::nullopt;
   return root;
 }
@@ -73,7 +73,7 @@ std::optional<RootOutcome<T>> point_contact(const Vec2<T>& d, const Vec2<T>& dv,
 // line, degree <= 2, accepted where the centre projects inside the edge), and each endpoint as
 // a point at distance r. `q` is the centre relative to endpoint a; v and acc are relative.
 template <class T>
-std::optional<PredictedContact<T>> circle_segment_contact(const Vec2<T>& q, const Vec2<T>& v, const Vec2<T>& acc,
+std::optional<PredictedContact<T>> circle_segment_contact(SolverKind solver, const Vec2<T>& q, const Vec2<T>& v, const Vec2<T>& acc,
                                                           const T& r, const Vec2<T>& u, const T& horizon,
                                                           bool segment_first) {
   using std::sqrt;
@@ -96,7 +96,7 @@ std::optional<PredictedContact<T>> circle_segment_contact(const Vec2<T>& q, cons
     p.c[2] = T(side) * dot(acc, m) / T(2);
     p.degree = 2;
     const StartRule rule = side == side_now ? StartRule::OverlapCollides : StartRule::CrossingsOnly;
-    visit_downward_roots(p, T(0), horizon, rule, [&](const T& t, bool overlap) {
+    visit_downward_roots(solver, p, T(0), horizon, rule, [&](const T& t, bool overlap) {
       const Vec2<T> qt = q + v * t + acc * (t * t / T(2));
       const T along = dot(qt, u);
       if (along < T(0) || along > uu) return false;  // off the edge: a vertex's business
@@ -106,26 +106,26 @@ std::optional<PredictedContact<T>> circle_segment_contact(const Vec2<T>& q, cons
   }
   for (std::uint16_t k = 0; k < 2; ++k) {
     const Vec2<T> d = k == 0 ? q : q - u;
-    if (auto root = point_contact(d, v, acc, r, horizon))
+    if (auto root = point_contact(solver, d, v, acc, r, horizon))
       offer(root->t, ContactKind::CircleVertex, k, root->at_start_overlap);
   }
   return best;
 }
 
 template <class T>
-std::optional<PredictedContact<T>> predict_contact(const ShapeRef<T>& sa, const Kinematics<T>& ka,
+std::optional<PredictedContact<T>> predict_contact(SolverKind solver, const ShapeRef<T>& sa, const Kinematics<T>& ka,
                                                    const ShapeRef<T>& sb, const Kinematics<T>& kb,
                                                    const T& horizon) {
   if (sa.shape == ShapeKind::Circle && sb.shape == ShapeKind::Circle) {
-    auto root = point_contact(kb.p - ka.p, kb.v - ka.v, kb.a - ka.a, sa.radius + sb.radius, horizon);
+    auto root = point_contact(solver, kb.p - ka.p, kb.v - ka.v, kb.a - ka.a, sa.radius + sb.radius, horizon);
     if (!root) return std::nullopt;
     return PredictedContact<T>{root->t, ContactKind::CircleCircle, 0, 0, root->at_start_overlap};
   }
   if (sa.shape == ShapeKind::Segment && sb.shape == ShapeKind::Circle)
-    return circle_segment_contact(kb.p - sa.seg_a, kb.v - ka.v, kb.a - ka.a, sb.radius, sa.seg_b - sa.seg_a,
+    return circle_segment_contact(solver, kb.p - sa.seg_a, kb.v - ka.v, kb.a - ka.a, sb.radius, sa.seg_b - sa.seg_a,
                                   horizon, true);
   if (sa.shape == ShapeKind::Circle && sb.shape == ShapeKind::Segment)
-    return circle_segment_contact(ka.p - sb.seg_a, ka.v - kb.v, ka.a - kb.a, sa.radius, sb.seg_b - sb.seg_a,
+    return circle_segment_contact(solver, ka.p - sb.seg_a, ka.v - kb.v, ka.a - kb.a, sa.radius, sb.seg_b - sb.seg_a,
                                   horizon, false);
   return std::nullopt;  // segment against segment: both fixed in this version
 }

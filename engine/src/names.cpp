@@ -1,5 +1,6 @@
 #include "pge/event.hpp"
 #include "pge/scalar.hpp"
+#include "pge/scene.hpp"
 
 namespace pge {
 
@@ -22,6 +23,23 @@ bool parse_scalar_kind(std::string_view text, ScalarKind& out) {
   return true;
 }
 
+std::string_view solver_name(SolverKind kind) {
+  switch (kind) {
+    case SolverKind::Fast: return "fast";
+    case SolverKind::Robust: return "robust";
+    case SolverKind::Certified: return "certified";
+  }
+  return "?";
+}
+
+bool parse_solver_kind(std::string_view text, SolverKind& out) {
+  if (text == "fast") out = SolverKind::Fast;
+  else if (text == "robust") out = SolverKind::Robust;
+  else if (text == "certified") out = SolverKind::Certified;
+  else return false;
+  return true;
+}
+
 std::string_view event_kind_name(EventKind kind) {
   switch (kind) {
     case EventKind::Collision: return "collision";
@@ -37,6 +55,7 @@ std::string_view contact_kind_name(ContactKind kind) {
     case ContactKind::CircleEdge: return "circle-edge";
     case ContactKind::CircleVertex: return "circle-vertex";
     case ContactKind::VertexEdge: return "vertex-edge";
+    case ContactKind::EdgeVertex: return "edge-vertex";
   }
   return "?";
 }

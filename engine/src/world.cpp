@@ -27,6 +27,8 @@ template <class T> struct World<T>::Impl {
     bool fixed = false;
     T radius{};
     Vec2<T> seg_a, seg_b;  // segment endpoints in world coordinates (segments are fixed)
+    std::vector<Vec2<T>> local;  // vertices relative to the position, as in the scene
+    std::vector<Vec2<T>> world;  // fixed bodies: position + local, rounded once
     T mass{};
     T inv_mass{};          // 0 for fixed bodies
     T restitution{1};
@@ -52,6 +54,7 @@ template <class T> struct World<T>::Impl {
   std::uint64_t timer_seq = 0;
   T now{};
   T horizon{};
+  SolverKind solver = SolverKind::Robust;
   std::uint64_t max_events = 0;
   double fps = 0;
   std::uint64_t next_frame = 0;
@@ -88,7 +91,7 @@ template <class T> struct World<T>::Impl {
     const Body& b = bodies[hi];
     if (a.fixed && b.fixed) return std::nullopt;
     ++counts.predictions;
-    auto c = predict_contact(shape_of(a), kinematics(a, now), shape_of(b), kinematics(b, now), horizon - now);
+    auto c = predict_contact(solver, shape_of(a), kinematics(a, now), shape_of(b), kinematics(b, now), horizon - now);
     if (!c) return std::nullopt;
     c->time = now + c->time;  // relative to absolute
     if (c->time > horizon) return std::nullopt;
@@ -248,6 +251,10 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
   }
   Impl& w = *impl_;
   w.horizon = T(options.until >= 0 ? options.until : scene.run.until);
+  w.solver = options.solver.value_or(scene.run.solver);
+  if (w.solver != SolverKind::Robust)
+    throw UnsupportedScene(-1, "run.solver: the " + std::string(solver_name(w.solver)) +
+                                   " solver is not available in this engine version yet");
   w.max_events = options.max_events > 0 ? options.max_events : scene.run.max_events;
   w.fps = options.frames_per_second >= 0 ? options.frames_per_second : scene.run.frames_per_second;
   w.bodies.reserve(scene.bodies.size());
@@ -262,8 +269,15 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
     b.shape = d.shape;
     b.fixed = d.fixed;
     b.radius = T(d.radius);
-    b.seg_a = vec_cast<T>(d.position + d.a);
-    b.seg_b = vec_cast<T>(d.position + d.b);
+    if (d.shape == ShapeKind::Segment) b.local = {vec_cast<T>(d.a), vec_cast<T>(d.b)};
+    if (d.shape == ShapeKind::Polygon)
+      for (const Vec2d& v : d.vertices) b.local.push_back(vec_cast<T>(v));
+    if (d.fixed)
+      for (const Vec2<T>& v : b.local) b.world.push_back(vec_cast<T>(d.position) + v);
+    if (d.shape == ShapeKind::Segment) {
+      b.seg_a = b.world.empty() ? Vec2<T>{} : b.world[0];
+      b.seg_b = b.world.empty() ? Vec2<T>{} : b.world[1];
+    }
     b.mass = d.fixed ? T(0) : T(d.mass);
     b.inv_mass = d.fixed ? T(0) : T(1) / T(d.mass);
     b.restitution = T(d.restitution >= 0 ? d.restitution : scene.world.restitution);
@@ -369,6 +383,22 @@ template <class T> BodySnapshot<T> World<T>::snapshot(BodyIndex i) const {
   const Kinematics<T> k = impl_->kinematics(impl_->bodies.at(i), impl_->now);
   return {k.p, k.v};
 }
+
+template <class T> BodyMotion<T> World<T>::motion(BodyIndex i) const {
+  const auto& b = impl_->bodies.at(i);
+  if (b.fixed) return {T(0), b.p0, Vec2<T>{}, Vec2<T>{}};
+  return {b.t0, b.p0, b.v0, b.acc};
+}
+template <class T> ShapeKind World<T>::shape(BodyIndex i) const { return impl_->bodies.at(i).shape; }
+template <class T> T World<T>::radius(BodyIndex i) const { return impl_->bodies.at(i).radius; }
+template <class T> T World<T>::restitution(BodyIndex i) const { return impl_->bodies.at(i).restitution; }
+template <class T> const std::vector<Vec2<T>>& World<T>::local_vertices(BodyIndex i) const {
+  return impl_->bodies.at(i).local;
+}
+template <class T> const std::vector<Vec2<T>>& World<T>::world_vertices(BodyIndex i) const {
+  return impl_->bodies.at(i).world;
+}
+template <class T> SolverKind World<T>::solver() const { return impl_->solver; }
 
 template <class T> void World<T>::set_velocity(BodyIndex i, Vec2<T> velocity) {
   Impl& w = *impl_;

@@ -290,7 +290,7 @@ class SceneReader {
 
   RunDesc read_run(const Json& value, const JsonPath& path) const {
     const Json& run = object_at(value, path);
-    allow_keys(run, path, {"until", "max_events", "frames_per_second"});
+    allow_keys(run, path, {"until", "max_events", "frames_per_second", "solver"});
     RunDesc out;
     if (run.contains("until")) {
       out.until = number_at(run["until"], path + "until");
@@ -303,6 +303,11 @@ class SceneReader {
       if (!(out.frames_per_second >= 0))
         fail(path + "frames_per_second",
              "must be 0 (no frames) or positive, got " + describe(run["frames_per_second"]));
+    }
+    if (run.contains("solver")) {
+      const std::string name = string_at(run["solver"], path + "solver");
+      if (!parse_solver_kind(name, out.solver))
+        fail(path + "solver", "must be \"fast\", \"robust\" or \"certified\", got \"" + name + "\"");
     }
     return out;
   }

@@ -127,6 +127,7 @@ std::string write_scene(const Scene& scene, std::string_view expect_json) {
   Json run = Json::object({{"until", scene.run.until}, {"max_events", scene.run.max_events}});
   if (!same_bits(scene.run.frames_per_second, RunDesc{}.frames_per_second))
     run["frames_per_second"] = scene.run.frames_per_second;
+  if (scene.run.solver != RunDesc{}.solver) run["solver"] = std::string(solver_name(scene.run.solver));
 
   try {
     std::string out = "{\n";

@@ -15,13 +15,25 @@ inline constexpr BodyIndex kNoBody = 0xffffffffu;
 // then the lower body id, then the higher).
 enum class EventKind : std::uint8_t { Collision = 0, Timer = 1, Frame = 2 };
 
-// The pair of features in contact. Feature indices: a segment's edge is 0, its endpoints are
-// vertices 0 (a) and 1 (b); a circle's only feature is 0.
+// The pair of features in contact, for the pair (a, b) with a the lower body index.
+// Feature indices:
+//   circle:  its only feature is 0.
+//   segment: vertices 0 (a) and 1 (b); edge 0 runs from vertex 0 to vertex 1. A segment is
+//            two-sided: it can be touched from either side of its line.
+//   polygon: vertex k is the k-th vertex of the scene (counter-clockwise); edge k runs from
+//            vertex k to vertex k + 1 (mod n). Polygon edges are one-sided: touched from outside,
+//            along the outward normal (e.y, -e.x) of the edge vector e.
+// The kind says which body contributes which feature:
+//   CircleEdge / CircleVertex: one body is a circle (feature 0), the other contributes the edge
+//     or vertex; which is which follows from the shapes.
+//   VertexEdge: a's vertex feature_a against b's edge feature_b; EdgeVertex: a's edge
+//     feature_a against b's vertex feature_b.
 enum class ContactKind : std::uint8_t {
   CircleCircle = 0,  // centre distance equals the radius sum
   CircleEdge = 1,    // a circle against the interior of an edge (projection in [0, 1])
   CircleVertex = 2,  // a circle against a vertex (a circle of radius 0)
-  VertexEdge = 3,    // a polygon vertex against an edge interior (polygons: later)
+  VertexEdge = 3,    // a's vertex against b's edge interior (a point crossing a line)
+  EdgeVertex = 4,    // a's edge interior against b's vertex
 };
 
 std::string_view event_kind_name(EventKind kind);

@@ -4,8 +4,20 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
 
 namespace pge {
+
+// The root solver behind every prediction.
+//   Fast: closed forms (quadratic formula, Cardano, Ferrari), as the original PGE: the baseline.
+//   Robust (default): bracketing between the roots of the derivative, stable closed forms for
+//     degree <= 2, safeguarded Newton elsewhere.
+//   Certified: a rigorous error bound around robust's work, exact rational arithmetic where the
+//     bound cannot decide; returns the double nearest the exact earliest root.
+enum class SolverKind : std::uint8_t { Fast, Robust, Certified };
+
+std::string_view solver_name(SolverKind kind);                  // "fast", "robust", "certified"
+bool parse_solver_kind(std::string_view text, SolverKind& out);  // false if unknown
 
 // p(t) = c[0] + c[1] t + ... + c[4] t^4. `degree` is the index of the highest coefficient the
 // producer set (the polynomial may still have leading zeros; solvers trim them).
@@ -43,20 +55,37 @@ template <class T> struct RootOutcome {
 // separation; a one-sided distance to a line is negative on the other side and must not.
 enum class StartRule : std::uint8_t { OverlapCollides, CrossingsOnly };
 
+}  // namespace pge
+
+#include "pge/detail/roots_robust.hpp"
+
+namespace pge {
+
 // Calls `visit(t, at_start_overlap)` for each downward root of p in [lo, hi], earliest first,
 // until `visit` returns true. A downward root is a t where p(t) = 0 and p goes negative just
 // after t (f' < 0, or the first non-zero derivative negative); a double root where p touches
 // zero and comes back up (a graze) is not one. With StartRule::OverlapCollides, p(lo) <= 0 and
 // decreasing at lo yields lo first. Returns true if some visit returned true.
-// This is the robust solver: it brackets every root between the roots of the derivative and
-// refines it by safeguarded Newton iteration.
+// Contact code calls this, so that every contact category works with every solver.
 template <class T, class Visit>
-bool visit_downward_roots(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Visit&& visit);
+bool visit_downward_roots(SolverKind solver, const Poly<T>& p, const T& lo, const T& hi, StartRule rule,
+                          Visit&& visit) {
+  (void)solver;  // only the robust solver exists so far; World rejects the others
+  return robust_visit_downward_roots(p, lo, hi, rule, visit);
+}
 
+// The earliest downward root (see visit_downward_roots), or None.
 template <class T>
-RootOutcome<T> earliest_downward_root(const Poly<T>& p, const T& lo, const T& hi,
-                                      StartRule rule = StartRule::OverlapCollides);
+RootOutcome<T> earliest_downward_root(SolverKind solver, const Poly<T>& p, const T& lo, const T& hi,
+                                      StartRule rule = StartRule::OverlapCollides) {
+  RootOutcome<T> out;
+  visit_downward_roots(solver, p, lo, hi, rule, [&](const T& t, bool overlap) {
+    out.status = RootStatus::Root;
+    out.t = t;
+    out.at_start_overlap = overlap;
+    return true;
+  });
+  return out;
+}
 
 }  // namespace pge
-
-#include "pge/detail/roots_robust.hpp"

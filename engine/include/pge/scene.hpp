@@ -2,11 +2,13 @@
 // The engine is built from it; the io library reads and writes it.
 #pragma once
 
+#include "pge/roots.hpp"
 #include "pge/vec2.hpp"
 
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace pge {
@@ -37,9 +39,9 @@ struct RunDesc {
   double until = 10;                   // simulated seconds
   std::uint64_t max_events = 1000000;  // collisions at most before the run stops
   double frames_per_second = 0;        // 0: no frame events
+  SolverKind solver = SolverKind::Robust;
 };
 
-enum class SolverKind : std::uint8_t { Fast, Robust, Certified };
 
 struct Scene {
   std::string name;

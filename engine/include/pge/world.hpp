@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,6 +26,7 @@ struct UnsupportedScene : std::runtime_error {
 
 struct WorldOptions {
   double until = -1;              // horizon in seconds; < 0: the scene's run.until
+  std::optional<SolverKind> solver;  // nothing: the scene's run.solver
   std::uint64_t max_events = 0;   // collision budget; 0: the scene's run.max_events
   double frames_per_second = -1;  // < 0: the scene's run.frames_per_second; 0: none
 };
@@ -37,6 +39,14 @@ struct EventCounts {
   std::uint64_t frames = 0;
   std::uint64_t stale = 0;        // queue entries dropped because a partner had changed
   std::uint64_t predictions = 0;  // pair predictions computed
+};
+
+// The closed-form path the engine holds for a body: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2
+// for t >= t0 until an event changes it. For fixed bodies v0 = acc = 0 and t0 = 0. This is the
+// state an exact referee reads (it never calls the engine's algebra).
+template <class T> struct BodyMotion {
+  T t0{};
+  Vec2<T> p0, v0, acc;
 };
 
 // A body's state at the world's current time.
@@ -82,6 +92,16 @@ template <class T> class World {
   bool is_fixed(BodyIndex i) const;
   T mass(BodyIndex i) const;  // 0 for fixed bodies (infinite mass)
   BodySnapshot<T> snapshot(BodyIndex i) const;  // at time()
+  BodyMotion<T> motion(BodyIndex i) const;
+  ShapeKind shape(BodyIndex i) const;
+  T radius(BodyIndex i) const;       // circles; 0 otherwise
+  T restitution(BodyIndex i) const;  // the body's own, or the world default it took
+  // Shape vertices relative to the body's position, as given in the scene (segment: a, b).
+  const std::vector<Vec2<T>>& local_vertices(BodyIndex i) const;
+  // For fixed bodies, the world coordinates the engine predicts with (position + local vertex,
+  // rounded once at construction); empty for moving bodies.
+  const std::vector<Vec2<T>>& world_vertices(BodyIndex i) const;
+  SolverKind solver() const;
   // Replaces a moving body's velocity at time() and reschedules it (for timer callbacks).
   void set_velocity(BodyIndex i, Vec2<T> velocity);
 

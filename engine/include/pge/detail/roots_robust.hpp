@@ -140,8 +140,9 @@ T downward_root_in_piece(const Poly<T>& p, const Poly<T>& dp, int deg, const T& 
 
 }  // namespace detail
 
+// The robust solver (see SolverKind).
 template <class T, class Visit>
-bool visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& hi, StartRule rule, Visit&& visit) {
+bool robust_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& hi, StartRule rule, Visit&& visit) {
   using detail::sign_of;
   if (!(lo <= hi)) return false;
   Poly<T> p = p_in;
@@ -174,18 +175,6 @@ bool visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& hi, StartRu
     if (crosses && visit(b[i + 1], false)) return true;
   }
   return false;
-}
-
-template <class T>
-RootOutcome<T> earliest_downward_root(const Poly<T>& p, const T& lo, const T& hi, StartRule rule) {
-  RootOutcome<T> out;
-  visit_downward_roots(p, lo, hi, rule, [&](const T& t, bool overlap) {
-    out.status = RootStatus::Root;
-    out.t = t;
-    out.at_start_overlap = overlap;
-    return true;
-  });
-  return out;
 }
 
 }  // namespace pge
