@@ -1,5 +1,7 @@
 // The `pge` command.
+#include "check.hpp"
 #include "exit_codes.hpp"
+#include "fuzz.hpp"
 #include "generate.hpp"
 #include "run.hpp"
 
@@ -8,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <exception>
 #include <unistd.h>
 
@@ -56,6 +59,40 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--quiet,-q", run.quiet, "Print no summary (errors still go to stderr)");
   run_cmd->add_flag("--progress", run.progress, "Show progress on stderr (default: only when stderr is a terminal)");
 
+  CheckOptions check;
+  CLI::App* check_cmd = app.add_subcommand(
+      "check", "Run the engine on scenes and judge every event against the exact oracle; exit 7 on a miss or phantom.");
+  check_cmd->add_option("scenes", check.scenes, "Scene files (pge-scene/1 JSON) or directories of them")->required();
+  check_cmd->add_option("--until", check.until, "Simulated seconds (default: each scene's run.until)")->check(kPositive);
+  check_cmd->add_option("--max-events", check.max_events, "Stop after this many collisions (default: the scene's run.max_events)")
+      ->check(kPositive);
+  check_cmd->add_option("--scalar", check.scalar, "Number type: float, double, long-double, quad")
+      ->check(CLI::IsMember({"float", "double", "long-double", "quad"}));
+  check_cmd->add_option("--solver", check.solver, "Root solver: fast, robust, certified (default: each scene's run.solver)")
+      ->check(CLI::IsMember({"fast", "robust", "certified"}));
+  check_cmd->add_option("--json", check.json, "Write the summaries and every event's verdict to FILE (JSON)");
+  check_cmd->add_flag("--no-filter", check.no_filter, "Solve every pair exactly, without the interval filter (slow; same verdicts)");
+  check_cmd->add_flag("--quiet,-q", check.quiet, "Print no summary (errors still go to stderr)");
+  check_cmd->add_flag("--progress", check.progress, "Show progress on stderr (default: only when stderr is a terminal)");
+
+  FuzzOptions fuzz;
+  std::string fuzz_shard = "0/1", fuzz_solver = "robust";
+  CLI::App* fuzz_cmd = app.add_subcommand(
+      "fuzz", "Generate scenes, check every invariant, shrink failures into regression fixtures; exit 8 on a failure.");
+  fuzz_cmd->add_option("--time", fuzz.time_limit, "Seconds of wall time to fuzz (0: no limit)")->check(kNonNegative);
+  fuzz_cmd->add_option("--cases", fuzz.cases, "Cases to run in this shard (0: no limit)");
+  fuzz_cmd->add_option("--seed", fuzz.seed, "Campaign seed (same seed, same cases)");
+  fuzz_cmd->add_option("--shard", fuzz_shard, "i/n: run the i-th of n disjoint parts of the campaign (0-based)");
+  fuzz_cmd->add_option("--solver", fuzz_solver, "Root solver: fast, robust, certified")
+      ->check(CLI::IsMember({"fast", "robust", "certified"}));
+  fuzz_cmd->add_option("--out", fuzz.out, "Directory for shrunk failing scenes (default: fixtures/regressions)");
+  fuzz_cmd->add_option("--max-failures", fuzz.max_failures, "Stop after this many failures")->check(CLI::Range(1u, 100000u));
+  bool no_polygons = false;
+  fuzz_cmd->add_flag("--no-polygons", no_polygons, "Generate scenes of circles and segments only");
+  fuzz_cmd->add_flag("--storms-fail", fuzz.storms_fail, "Count event storms (resting contacts) as failures");
+  fuzz_cmd->add_flag("--quiet,-q", fuzz.quiet, "Print no summary");
+  fuzz_cmd->add_flag("--progress", fuzz.progress, "Show progress on stderr (default: only when stderr is a terminal)");
+
   GenerateOptions gen;
   CLI::App* gen_cmd = app.add_subcommand("generate", "Write a scene of a deterministic family (same seed, same scene).");
   gen_cmd->add_option("family", gen.family, "Scene family: gas (equal elastic discs in a square box)")
@@ -95,7 +132,27 @@ int main(int argc, char** argv) {
       if (!run.progress) run.progress = isatty(fileno(stderr)) != 0 && !run.quiet;
       return run_command(run);
     }
+    if (check_cmd->parsed()) {
+      if (!check.progress) check.progress = isatty(fileno(stderr)) != 0 && !check.quiet;
+      return check_command(check);
+    }
     if (gen_cmd->parsed()) return generate_command(gen);
+    if (fuzz_cmd->parsed()) {
+      unsigned shard = 0, shards = 0;
+      char slash = 0;
+      std::istringstream in(fuzz_shard);
+      if (!(in >> shard >> slash >> shards) || slash != '/' || shards == 0 || shard >= shards || !in.eof()) {
+        fmt::print(stderr, "pge: --shard: expected i/n with 0 <= i < n, got {} (see --help)\n", fuzz_shard);
+        return kExitUsage;
+      }
+      if (fuzz.cases == 0 && fuzz.time_limit == 0) fuzz.cases = 1000;
+      fuzz.polygons = !no_polygons;
+      fuzz.shard = shard;
+      fuzz.shards = shards;
+      pge::parse_solver_kind(fuzz_solver, fuzz.solver);
+      if (!fuzz.progress) fuzz.progress = isatty(fileno(stderr)) != 0 && !fuzz.quiet;
+      return fuzz_command(fuzz);
+    }
   } catch (const std::exception& e) {
     fmt::print(stderr, "pge: internal error: {}\n", e.what());
     return kExitInternal;

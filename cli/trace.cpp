@@ -36,8 +36,7 @@ void TraceWriter::header(const Scene& scene, std::string_view scalar, std::strin
   fmt::print(file_, "]}}\n");
 }
 
-// JSON string escaping for ids and names.
-std::string TraceWriter::quoted(std::string_view s) {
+std::string json_quoted(std::string_view s) {
   std::string out = "\"";
   for (const char ch : s) {
     const auto c = static_cast<unsigned char>(ch);

@@ -14,6 +14,9 @@
 
 namespace pge::cli {
 
+// A JSON string literal for `s` (quotes and control characters escaped).
+std::string json_quoted(std::string_view s);
+
 class TraceWriter {
  public:
   TraceWriter() = default;
@@ -55,7 +58,7 @@ class TraceWriter {
 
  private:
   template <class T> static double d(const T& x) { return static_cast<double>(x); }
-  static std::string quoted(std::string_view s);
+  static std::string quoted(std::string_view s) { return json_quoted(s); }
 
   std::FILE* file_ = nullptr;
   std::string path_;

@@ -18,6 +18,7 @@ template <class T> struct Scheduled {
   std::uint16_t feature_a = 0;
   std::uint16_t feature_b = 0;
   bool at_start_overlap = false;
+  bool corner = false;                  // a vertex against an edge's end (contact_polygon.hpp)
   BodyIndex partner = kNoBody;          // the other body of the pair, seen from the owner
   std::uint64_t partner_version = 0;    // the partner's version when this was predicted
 

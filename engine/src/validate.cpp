@@ -2,6 +2,8 @@
 
 #include "pge/constants.hpp"
 
+#include "geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <charconv>
@@ -17,15 +19,6 @@ std::string fmt_num(double x) {
 }
 
 bool finite2(const Vec2d& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
-
-// Distance from point q to the segment [a, b].
-double point_segment_distance(Vec2d q, Vec2d a, Vec2d b) {
-  const Vec2d u = b - a;
-  double lambda = dot(q - a, u) / dot(u, u);
-  lambda = std::clamp(lambda, 0.0, 1.0);
-  const Vec2d c = a + u * lambda;
-  return std::hypot(q.x - c.x, q.y - c.y);
-}
 
 std::optional<SceneProblem> check_body(const BodyDesc& b, int i) {
   auto problem = [&](std::string field, std::string msg) {
@@ -54,10 +47,13 @@ std::optional<SceneProblem> check_body(const BodyDesc& b, int i) {
       if (n < 3) return problem("polygon.vertices", "needs at least 3 vertices, got " + std::to_string(n));
       for (std::size_t k = 0; k < n; ++k)
         if (!finite2(v[k])) return problem("polygon.vertices[" + std::to_string(k) + "]", "must be finite");
+      // Repeats first: a repeated vertex also makes a zero turn, which is not what is wrong.
+      for (std::size_t k = 0; k < n; ++k)
+        if (v[(k + 1) % n] == v[k])
+          return problem("polygon.vertices[" + std::to_string((k + 1) % n) + "]", "repeats the previous vertex");
       for (std::size_t k = 0; k < n; ++k) {
         const Vec2d e0 = v[(k + 1) % n] - v[k];
         const Vec2d e1 = v[(k + 2) % n] - v[(k + 1) % n];
-        if (e0 == Vec2d{}) return problem("polygon.vertices[" + std::to_string((k + 1) % n) + "]", "repeats the previous vertex");
         const double turn = cross(e0, e1);
         const std::string where = "polygon.vertices[" + std::to_string((k + 1) % n) + "]";
         if (turn == 0) return problem(where, "is collinear with its neighbours");
@@ -80,21 +76,35 @@ std::optional<SceneProblem> check_body(const BodyDesc& b, int i) {
   return std::nullopt;
 }
 
-// Overlap at the start between two bodies, as a fraction of their contact distance; only the
-// circle pairs and circle/segment pairs are measured here (polygons: with the polygon engine).
+// A polygon's or segment's vertices in world coordinates (a segment is the outline [a, b]).
+struct WorldOutline {
+  const BodyDesc& body;
+  std::size_t size() const { return body.shape == ShapeKind::Segment ? 2 : body.vertices.size(); }
+  Vec2d operator()(std::size_t k) const {
+    if (body.shape == ShapeKind::Segment) return body.position + (k == 0 ? body.a : body.b);
+    return body.position + body.vertices[k];
+  }
+};
+
+// Overlap at the start between two bodies, as a fraction of their contact distance: the radius
+// sum, a circle's radius against a wall or polygon, or the smaller size of two outlines.
 double start_overlap(const BodyDesc& x, const BodyDesc& y) {
+  // Two fixed bodies never interact: walls and cushions may meet and cross.
+  if (x.fixed && y.fixed) return -1;
   if (x.shape == ShapeKind::Circle && y.shape == ShapeKind::Circle) {
     const double r = x.radius + y.radius;
     const double d = std::hypot(y.position.x - x.position.x, y.position.y - x.position.y);
     return (r - d) / r;
   }
   const BodyDesc* c = x.shape == ShapeKind::Circle ? &x : (y.shape == ShapeKind::Circle ? &y : nullptr);
-  const BodyDesc* s = x.shape == ShapeKind::Segment ? &x : (y.shape == ShapeKind::Segment ? &y : nullptr);
-  if (c && s) {
-    const double d = point_segment_distance(c->position, s->position + s->a, s->position + s->b);
-    return (c->radius - d) / c->radius;
+  if (c) {
+    const BodyDesc& other = c == &x ? y : x;
+    const WorldOutline outline{other};
+    return (c->radius - point_outline_distance(c->position, outline, outline.size())) / c->radius;
   }
-  return -1;
+  const WorldOutline ox{x}, oy{y};
+  const double depth = -outline_separation<double>(ox, ox.size(), oy, oy.size());
+  return depth / std::min(outline_size<double>(ox, ox.size()), outline_size<double>(oy, oy.size()));
 }
 
 }  // namespace

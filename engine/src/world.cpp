@@ -21,21 +21,19 @@
 namespace pge {
 
 template <class T> struct World<T>::Impl {
+  // The fields every prediction reads come first, so that a scan over all bodies touches as
+  // few cache lines as it can; the shape's outline data and the rest follow.
   struct Body {
-    std::string id;
-    ShapeKind shape = ShapeKind::Circle;
     bool fixed = false;
-    T radius{};
-    Vec2<T> seg_a, seg_b;  // segment endpoints in world coordinates (segments are fixed)
-    std::vector<Vec2<T>> local;  // vertices relative to the position, as in the scene
-    std::vector<Vec2<T>> world;  // fixed bodies: position + local, rounded once
-    T mass{};
-    T inv_mass{};          // 0 for fixed bodies
-    T restitution{1};
     // Motion since t0: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2.
     T t0{};
     Vec2<T> p0, v0, acc;
     std::uint64_t version = 0;  // bumped whenever the body's motion changes
+    BodyShape<T> shape;         // kind and radius first; a moving polygon's vertex is p(t) + local
+    T mass{};
+    T inv_mass{};          // 0 for fixed bodies
+    T restitution{1};
+    std::string id;
     T storm_start{};
     std::uint32_t storm_count = 0;
   };
@@ -73,10 +71,6 @@ template <class T> struct World<T>::Impl {
     return {b.p0 + b.v0 * tau + b.acc * (tau * tau / T(2)), b.v0 + b.acc * tau, b.acc};
   }
 
-  ShapeRef<T> shape_of(const Body& b) const {
-    return {b.shape, b.radius, b.seg_a, b.seg_b};
-  }
-
   void rebase(Body& b, const T& t) {
     if (b.fixed) return;
     const Kinematics<T> k = kinematics(b, t);
@@ -91,7 +85,7 @@ template <class T> struct World<T>::Impl {
     const Body& b = bodies[hi];
     if (a.fixed && b.fixed) return std::nullopt;
     ++counts.predictions;
-    auto c = predict_contact(solver, shape_of(a), kinematics(a, now), shape_of(b), kinematics(b, now), horizon - now);
+    auto c = predict_contact(solver, a.shape, kinematics(a, now), b.shape, kinematics(b, now), horizon - now);
     if (!c) return std::nullopt;
     c->time = now + c->time;  // relative to absolute
     if (c->time > horizon) return std::nullopt;
@@ -105,7 +99,7 @@ template <class T> struct World<T>::Impl {
       const BodyIndex lo = std::min(i, j), hi = std::max(i, j);
       auto c = predict(lo, hi);
       if (!c) continue;
-      Scheduled<T> s{c->time, lo, hi, c->contact, c->feature_a, c->feature_b, c->at_start_overlap,
+      Scheduled<T> s{c->time, lo, hi, c->contact, c->feature_a, c->feature_b, c->at_start_overlap, c->corner,
                      j, bodies[j].version};
       if (s.key_less(best)) best = s;
     }
@@ -119,7 +113,7 @@ template <class T> struct World<T>::Impl {
       for (BodyIndex j = i + 1; j < bodies.size(); ++j) {
         auto c = predict(i, j);
         if (!c) continue;
-        Scheduled<T> s{c->time, i, j, c->contact, c->feature_a, c->feature_b, c->at_start_overlap, j,
+        Scheduled<T> s{c->time, i, j, c->contact, c->feature_a, c->feature_b, c->at_start_overlap, c->corner, j,
                        bodies[j].version};
         if (!bodies[i].fixed && s.key_less(best[i])) best[i] = s;
         s.partner = i;
@@ -153,16 +147,17 @@ template <class T> struct World<T>::Impl {
     rebase(a, now);
     rebase(b, now);
     const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
-    const ContactGeometry<T> g =
-        contact_geometry(s.contact, s.feature_a, s.feature_b, shape_of(a), ka, shape_of(b), kb);
+    const PredictedContact<T> contact{now, s.contact, s.feature_a, s.feature_b, s.at_start_overlap, s.corner};
+    const ContactGeometry<T> g = contact_geometry(contact, a.shape, ka, b.shape, kb);
 
     CollisionInfo<T> info;
     info.time = now;
     info.a = s.lo;
     info.b = s.hi;
     info.contact = s.contact;
-    info.feature_a = s.feature_a;
-    info.feature_b = s.feature_b;
+    info.feature_a = s.contact == ContactKind::EdgeVertex ? public_edge(a.shape, s.feature_a) : s.feature_a;
+    info.feature_b = s.contact == ContactKind::VertexEdge ? public_edge(b.shape, s.feature_b) : s.feature_b;
+    info.corner = s.corner;
     info.point = g.point;
     info.gap = g.gap;
     info.at_start_overlap = s.at_start_overlap;
@@ -192,7 +187,7 @@ template <class T> struct World<T>::Impl {
     info.va_after = a.v0;
     info.vb_after = b.v0;
 
-    const Overlap o = measure_overlap(-g.gap, g.contact_distance, ka.p, kb.p, s.lo, s.hi);
+    const Overlap o = measure_overlap(-g.gap, g.contact_distance, rounding_scale(a.shape, ka, b.shape, kb, now), s.lo, s.hi);
     if (o.ulps > worst_contact.ulps) worst_contact = o;
     ++a.version;
     ++b.version;
@@ -207,13 +202,23 @@ template <class T> struct World<T>::Impl {
     }
   }
 
-  // Overlap depth as a fraction of the contact distance and in units of the pair's rounding.
-  static Overlap measure_overlap(const T& depth, const T& contact_distance, const Vec2<T>& pa, const Vec2<T>& pb,
-                                 BodyIndex a, BodyIndex b) {
-    if (!(depth > T(0))) return {};
+  // The length at which a pair's contact is rounded, in units of epsilon: its largest coordinate
+  // magnitude (vertices included), plus how far it closes in the time it takes the clock to
+  // move by its relative precision (an event time t is rounded to ulp(t), in which the pair
+  // closes |v_rel| ulp(t)); a long run is as precise as its clock.
+  static T rounding_scale(const BodyShape<T>& sa, const Kinematics<T>& ka, const BodyShape<T>& sb,
+                          const Kinematics<T>& kb, const T& t) {
     using std::abs;
-    const T coords = std::max(std::max(abs(pa.x), abs(pa.y)), std::max(abs(pb.x), abs(pb.y)));
-    const T unit = std::numeric_limits<T>::epsilon() * (coords + contact_distance);
+    using std::sqrt;
+    const Vec2<T> dv = kb.v - ka.v;
+    return pair_scale(sa, ka.p, sb, kb.p) + sqrt(dot(dv, dv)) * abs(t);
+  }
+
+  // Overlap depth as a fraction of the contact distance and in units of the pair's rounding:
+  // epsilon * (rounding scale + contact distance).
+  static Overlap measure_overlap(const T& depth, const T& contact_distance, const T& scale, BodyIndex a, BodyIndex b) {
+    if (!(depth > T(0))) return {};
+    const T unit = std::numeric_limits<T>::epsilon() * (scale + contact_distance);
     return {depth, depth / contact_distance, depth / unit, a, b};
   }
 
@@ -252,32 +257,15 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
   Impl& w = *impl_;
   w.horizon = T(options.until >= 0 ? options.until : scene.run.until);
   w.solver = options.solver.value_or(scene.run.solver);
-  if (w.solver != SolverKind::Robust)
-    throw UnsupportedScene(-1, "run.solver: the " + std::string(solver_name(w.solver)) +
-                                   " solver is not available in this engine version yet");
   w.max_events = options.max_events > 0 ? options.max_events : scene.run.max_events;
   w.fps = options.frames_per_second >= 0 ? options.frames_per_second : scene.run.frames_per_second;
   w.bodies.reserve(scene.bodies.size());
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDesc& d = scene.bodies[i];
-    if (d.shape == ShapeKind::Polygon)
-      throw UnsupportedScene(static_cast<int>(i), "body \"" + d.id + "\": polygon: polygons are not simulated by this engine version yet");
-    if (d.shape == ShapeKind::Segment && !d.fixed)
-      throw UnsupportedScene(static_cast<int>(i), "body \"" + d.id + "\": segment: moving segments are not simulated by this engine version yet (make it \"fixed\": true)");
     typename Impl::Body b;
     b.id = d.id;
-    b.shape = d.shape;
+    b.shape = make_body_shape<T>(d);
     b.fixed = d.fixed;
-    b.radius = T(d.radius);
-    if (d.shape == ShapeKind::Segment) b.local = {vec_cast<T>(d.a), vec_cast<T>(d.b)};
-    if (d.shape == ShapeKind::Polygon)
-      for (const Vec2d& v : d.vertices) b.local.push_back(vec_cast<T>(v));
-    if (d.fixed)
-      for (const Vec2<T>& v : b.local) b.world.push_back(vec_cast<T>(d.position) + v);
-    if (d.shape == ShapeKind::Segment) {
-      b.seg_a = b.world.empty() ? Vec2<T>{} : b.world[0];
-      b.seg_b = b.world.empty() ? Vec2<T>{} : b.world[1];
-    }
     b.mass = d.fixed ? T(0) : T(d.mass);
     b.inv_mass = d.fixed ? T(0) : T(1) / T(d.mass);
     b.restitution = T(d.restitution >= 0 ? d.restitution : scene.world.restitution);
@@ -389,14 +377,14 @@ template <class T> BodyMotion<T> World<T>::motion(BodyIndex i) const {
   if (b.fixed) return {T(0), b.p0, Vec2<T>{}, Vec2<T>{}};
   return {b.t0, b.p0, b.v0, b.acc};
 }
-template <class T> ShapeKind World<T>::shape(BodyIndex i) const { return impl_->bodies.at(i).shape; }
-template <class T> T World<T>::radius(BodyIndex i) const { return impl_->bodies.at(i).radius; }
+template <class T> ShapeKind World<T>::shape(BodyIndex i) const { return impl_->bodies.at(i).shape.kind; }
+template <class T> T World<T>::radius(BodyIndex i) const { return impl_->bodies.at(i).shape.radius; }
 template <class T> T World<T>::restitution(BodyIndex i) const { return impl_->bodies.at(i).restitution; }
 template <class T> const std::vector<Vec2<T>>& World<T>::local_vertices(BodyIndex i) const {
-  return impl_->bodies.at(i).local;
+  return impl_->bodies.at(i).shape.local;
 }
 template <class T> const std::vector<Vec2<T>>& World<T>::world_vertices(BodyIndex i) const {
-  return impl_->bodies.at(i).world;
+  return impl_->bodies.at(i).shape.world;
 }
 template <class T> SolverKind World<T>::solver() const { return impl_->solver; }
 
@@ -443,12 +431,13 @@ template <class T> typename World<T>::Overlap World<T>::largest_overlap() const 
   Overlap worst;
   for (BodyIndex i = 0; i < w.bodies.size(); ++i) {
     for (BodyIndex j = i + 1; j < w.bodies.size(); ++j) {
-      if (w.bodies[i].fixed && w.bodies[j].fixed) continue;
-      const auto sep = separation(w.shape_of(w.bodies[i]), w.kinematics(w.bodies[i], w.now).p,
-                                  w.shape_of(w.bodies[j]), w.kinematics(w.bodies[j], w.now).p);
-      if (!sep) continue;
-      const Overlap o = Impl::measure_overlap(-sep->gap, sep->contact_distance, w.kinematics(w.bodies[i], w.now).p,
-                                              w.kinematics(w.bodies[j], w.now).p, i, j);
+      const auto& a = w.bodies[i];
+      const auto& b = w.bodies[j];
+      if (a.fixed && b.fixed) continue;
+      const Kinematics<T> ka = w.kinematics(a, w.now), kb = w.kinematics(b, w.now);
+      const Separation<T> sep = separation(a.shape, ka.p, b.shape, kb.p);
+      const Overlap o = Impl::measure_overlap(-sep.gap, sep.contact_distance,
+                                              Impl::rounding_scale(a.shape, ka, b.shape, kb, w.now), i, j);
       if (o.ulps > worst.ulps) worst = o;
     }
   }

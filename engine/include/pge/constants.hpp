@@ -22,16 +22,45 @@ inline constexpr std::uint32_t kStormCollisions = 1000;
 inline constexpr double kStormWindowRelative = 1e-9;
 
 // Overlap bound: the largest overlap between two bodies, at a contact or between events, in
-// units of epsilon(T) * (largest coordinate magnitude of the pair + contact distance). A contact
-// time is computed from coordinates rounded at that scale, so its overlap is a small multiple of
-// it (measured on a 1,000-ball gas: about 150 for double, 50 for float); a missed or late contact
+// units of epsilon(T) * (largest coordinate magnitude of the pair, vertices included, + the
+// pair's relative speed * |t| + contact distance). A contact time is computed from coordinates
+// rounded at that scale and is itself rounded to ulp(t), in which the pair closes |v_rel| ulp(t),
+// so its overlap is a small multiple of it (measured on a 1,000-ball gas: about 150 for double,
+// 50 for float; on the bundled games over 100,000 events, see README); a missed or late contact
 // shows up as an overlap many orders of magnitude beyond this. Dimensionless.
 inline constexpr double kOverlapBoundUlps = 1024;
 
-// Root refinement: at most this many safeguarded Newton/bisection iterations per bracketed
+// Corner contacts (polygons and segments): a vertex that crosses an edge's line within this
+// many ulps of an end of the edge touches the corner there, a vertex against a vertex. Unit:
+// epsilon(T) * the pair's coordinate scale (largest vertex coordinate magnitude), widened by
+// (1 + cot of the crossing angle), which is how much a root time's rounding moves the contact
+// point along the edge. Such a contact collides only if the two bodies start to overlap (see
+// README, "What an event means") and takes the corner's normal. Too small: a corner hit can
+// fall between the two edges meeting there through rounding and the vertex pass into the body;
+// too large: contacts near (not at) a corner get the corner normal. It stays far below
+// kOverlapBoundUlps, so that a corner contact judged not entering overlaps less than the bound.
+inline constexpr double kCornerSlackUlps = 64;
+
+// Bounding circles: a pair involving a polygon or segment is skipped when the circles around
+// its two bodies (each body's farthest vertex from its position, plus a circle's radius) do not
+// meet before the horizon. The radius sum is widened by this fraction of (radius sum + the
+// pair's coordinate scale) so that rounding never makes the test skip a pair that touches.
+// Dimensionless; rounding is ~1e-16 of that scale, and a wider margin only costs predictions.
+inline constexpr double kBoundingSlackRelative = 0x1p-20;
+
+// Root refinement: at most this many safeguarded Halley/bisection iterations per bracketed
 // root. Bisection alone halves the bracket each step, so 200 steps exhaust the exponent range
 // of binary64 and reach adjacent floating-point numbers for every scalar up to binary128
 // (113-bit significand from any starting bracket within the exponent range of double).
 inline constexpr int kMaxRootIterations = 400;
 
 }  // namespace pge
+
+// Robust solver, relative degree reduction: a leading term c_d t^d is dropped when, for some
+// lower non-zero coefficient c_k, |c_d| m^(d-k) <= kNegligibleTermEpsilons * epsilon(T) * |c_k|
+// with m = max(|lo|, |hi|). In units of epsilon(T) (dimensionless). Then the dropped term is below
+// an eighth of one rounding of the kept terms anywhere in [lo, hi], far under the Horner error
+// bound (2d epsilon), so no sign the solver can compute changes. Raising it towards 1 and beyond
+// starts to move roots by more than rounding; 0 only drops exact zeros (closed forms then meet
+// huge spurious roots and ill-conditioned critical points).
+inline constexpr double kNegligibleTermEpsilons = 0.125;

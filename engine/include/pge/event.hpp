@@ -53,6 +53,10 @@ template <class T> struct CollisionInfo {
   T gap{};                    // signed separation at the contact (negative: overlap)
   Vec2<T> va_before, vb_before, va_after, vb_after;
   bool at_start_overlap = false;  // collided by the overlap rule
+  // VertexEdge / EdgeVertex only: the vertex met the edge at one of its ends, a vertex against a
+  // vertex (corner on corner, or parallel edges meeting end to end). `normal` is then the
+  // corner normal (README, "What an event means"), not the edge's.
+  bool corner = false;
 };
 
 enum class StopReason : std::uint8_t {

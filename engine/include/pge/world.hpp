@@ -112,9 +112,13 @@ template <class T> class World {
   Vec2<T> momentum() const;
 
   // The largest overlap of any pair at time(): its depth, the depth as a fraction of the contact
-  // distance (radius sum, or radius against a wall), and the depth in units of the rounding
-  // of the pair's coordinates, epsilon(T) * (largest coordinate magnitude + contact distance);
-  // the engine promises ulps <= kOverlapBoundUlps (constants.hpp). O(n^2): for checks only.
+  // distance (radius sum; a circle's radius against a wall or polygon; the smaller size of two
+  // polygons or segments, a size being the larger side of the bounding box), and the depth in
+  // units of the pair's rounding, epsilon(T) * (largest coordinate magnitude of the pair's
+  // centres and vertices + |relative velocity| * |time| + contact distance): the second term is
+  // how far the pair closes in the rounding of the clock. Polygon pairs are measured by the
+  // separating-axis depth. The engine promises ulps <= kOverlapBoundUlps (constants.hpp).
+  // O(n^2): for checks only.
   struct Overlap { T depth{}; T relative{}; T ulps{}; BodyIndex a = kNoBody, b = kNoBody; };
   Overlap largest_overlap() const;
   // The largest overlap seen at any collision so far (measured at the contact time).

@@ -1,0 +1,250 @@
+#include "check_report.hpp"
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pge::cli {
+namespace {
+
+// Failing events listed in the text summary (all of them are in the JSON).
+constexpr std::size_t kFailuresShown = 10;
+
+double magnitude(const oracle::ExactVec& v) {
+  const double x = v.x.to_double(), y = v.y.to_double();
+  return std::hypot(x, y);
+}
+
+const std::string& id_of(const Scene& s, BodyIndex i) {
+  static const std::string unknown = "?";
+  return i < s.bodies.size() ? s.bodies[i].id : unknown;
+}
+
+struct Extremes {
+  std::vector<long long> abs_ulps;
+  const EventRecord* worst_ulps = nullptr;
+  double worst_relative = 0;
+  const EventRecord* worst_energy = nullptr;
+  const EventRecord* worst_momentum = nullptr;
+  const EventRecord* worst_overlap = nullptr;
+  std::uint64_t elastic = 0, two_moving = 0, mismatches = 0, no_impulse = 0, overlap_rule = 0;
+};
+
+Extremes extremes_of(const SceneCheck& c) {
+  Extremes x;
+  for (const EventRecord& r : c.events) {
+    x.no_impulse += r.impulse ? 0 : 1;
+    x.overlap_rule += r.overlap_rule ? 1 : 0;
+    if (r.has_exact_time) {
+      x.abs_ulps.push_back(std::llabs(r.ulps));
+      if (!x.worst_ulps || std::llabs(r.ulps) > std::llabs(x.worst_ulps->ulps)) x.worst_ulps = &r;
+      x.worst_relative = std::max(x.worst_relative, r.relative_error);
+      x.mismatches += r.features_match ? 0 : 1;
+    }
+    if (r.elastic) {
+      ++x.elastic;
+      if (!x.worst_energy || std::abs(r.energy_change) > std::abs(x.worst_energy->energy_change)) x.worst_energy = &r;
+    }
+    if (r.both_moving) {
+      ++x.two_moving;
+      if (!x.worst_momentum || r.momentum_change > x.worst_momentum->momentum_change) x.worst_momentum = &r;
+    }
+    if (std::isfinite(r.gap) && (!x.worst_overlap || r.gap < x.worst_overlap->gap)) x.worst_overlap = &r;
+  }
+  return x;
+}
+
+long long median(std::vector<long long> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+std::string pair_text(const Scene& s, BodyIndex a, BodyIndex b) {
+  return fmt::format("\"{}\"-\"{}\"", id_of(s, a), id_of(s, b));
+}
+
+std::string features_text(const oracle::FeaturePair& f) {
+  return fmt::format("{} [{}, {}]", contact_kind_name(f.contact), f.feature_a, f.feature_b);
+}
+
+void print_failure(const EventRecord& r, const Scene& s) {
+  std::string why;
+  if (r.verdict == oracle::Verdict::Miss && !r.earliest.empty())
+    why = fmt::format("pair {} touches exactly earlier", pair_text(s, r.earliest[0].first, r.earliest[0].second));
+  else
+    why = r.has_exact_time ? "the pair touches only at " + r.exact_time : "the pair never touches before the horizon";
+  fmt::print("  FAILED: {} at event {} (t = {:.17g}, pair {}, {}): {}\n", oracle::verdict_name(r.verdict), r.index,
+             r.time, pair_text(s, r.a, r.b), features_text(r.features), why);
+}
+
+void print_conservation(const Extremes& x) {
+  if (x.worst_energy)
+    fmt::print("  energy: largest change {:.3g} (relative {:.3g}) over {} elastic collisions (exact, from the engine's "
+               "velocities and positions)\n",
+               x.worst_energy->energy_change, x.worst_energy->energy_relative, x.elastic);
+  if (x.worst_momentum)
+    fmt::print("  momentum: largest change {:.3g} (relative {:.3g}) over {} collisions of two moving bodies\n",
+               x.worst_momentum->momentum_change, x.worst_momentum->momentum_relative, x.two_moving);
+}
+
+void print_oracle(const SceneCheck& c) {
+  const auto& o = c.oracle;
+  const double share = o.pairs_examined ? 100.0 * static_cast<double>(o.pairs_filtered) / static_cast<double>(o.pairs_examined) : 0;
+  fmt::print("  oracle: {} events in {:.3f} s ({:.0f} events/s; engine {:.3f} s); filter {}: {} of {} pairs ({:.5f}%) "
+             "decided without exact arithmetic; {} pairs ({} feature pairs) solved exactly, the engine's own included\n",
+             o.events, o.seconds, o.seconds > 0 ? static_cast<double>(o.events) / o.seconds : 0.0, c.engine_seconds,
+             c.filter ? "on" : "off", o.pairs_filtered, o.pairs_examined, share, o.pairs_exact, o.features_exact);
+}
+
+}  // namespace
+
+EventRecord make_record(std::uint64_t index, double time, const oracle::ExactEvent& e, const oracle::Judgement& j) {
+  EventRecord r;
+  r.index = index;
+  r.time = time;
+  r.a = e.a;
+  r.b = e.b;
+  r.features = {e.contact, e.feature_a, e.feature_b};
+  r.impulse = e.impulse;
+  r.overlap_rule = e.overlap_rule;
+  r.verdict = j.verdict;
+  r.has_exact_time = j.pair_time.has_value();
+  // 20 decimals: beyond double's resolution for times below 10^4 s, cheap to refine to.
+  constexpr int kDecimals = 20;
+  if (j.pair_time) r.exact_time = j.pair_time->decimal(kDecimals);
+  r.ulps = j.ulps;
+  r.relative_error = j.relative_error;
+  r.features_match = j.features_match;
+  for (const oracle::PairContact& p : j.earliest) r.earliest.push_back({p.a, p.b});
+  const oracle::Conservation& k = j.conservation;
+  r.elastic = k.elastic && e.impulse;
+  r.both_moving = k.both_moving && e.impulse;
+  r.energy_change = k.energy_change.to_double();
+  r.energy_relative = k.kinetic_before > 0 ? std::abs(r.energy_change) / k.kinetic_before : 0;
+  r.momentum_change = magnitude(k.momentum_change);
+  r.momentum_relative = k.momentum_scale > 0 ? r.momentum_change / k.momentum_scale : 0;
+  r.gap = j.gap;
+  r.contact_distance = j.contact_distance;
+  return r;
+}
+
+std::array<std::uint64_t, oracle::kVerdictCount> verdict_counts(const SceneCheck& c) {
+  std::array<std::uint64_t, oracle::kVerdictCount> n{};
+  for (const EventRecord& r : c.events) ++n[static_cast<std::size_t>(r.verdict)];
+  if (c.end.miss) ++n[static_cast<std::size_t>(oracle::Verdict::Miss)];
+  return n;
+}
+
+bool has_failure(const SceneCheck& c) {
+  const auto n = verdict_counts(c);
+  return n[static_cast<std::size_t>(oracle::Verdict::Miss)] + n[static_cast<std::size_t>(oracle::Verdict::Phantom)] > 0;
+}
+
+void print_summary(const SceneCheck& c, const Scene& s) {
+  const Extremes x = extremes_of(c);
+  fmt::print("scene {} (\"{}\"): {} bodies, scalar {}, solver {}\n", c.path, c.name, c.bodies, c.scalar, c.solver);
+  fmt::print("  stopped: {} at t = {:.17g} (horizon {:.17g})\n", c.stop, c.time, c.horizon);
+  std::string end = "not checked (the run stopped before its horizon)";
+  if (c.end_checked && !c.end.miss) end = "no contact left before the horizon";
+  if (c.end.miss && !c.end.next.pairs.empty())
+    end = fmt::format("MISS: pair {} touches at {} before the horizon",
+                      pair_text(s, c.end.next.pairs[0].a, c.end.next.pairs[0].b), c.end.next.time->decimal(20));
+  fmt::print("  judged: {} events ({} without impulse, {} by the overlap rule); end: {}\n", c.events.size(), x.no_impulse,
+             x.overlap_rule, end);
+  const auto n = verdict_counts(c);
+  fmt::print("  verdicts:");
+  for (int v = 0; v < oracle::kVerdictCount; ++v)
+    fmt::print("{} {} {}", v ? "," : "", oracle::verdict_name(static_cast<oracle::Verdict>(v)), n[static_cast<std::size_t>(v)]);
+  fmt::print("\n");
+  if (x.worst_ulps)
+    fmt::print("  time error: median {} ulps, largest {} ulps (event {}, pair {}), largest relative {:.3g}; {} events "
+               "with other features than the oracle's\n",
+               median(x.abs_ulps), x.worst_ulps->ulps, x.worst_ulps->index, pair_text(s, x.worst_ulps->a, x.worst_ulps->b),
+               x.worst_relative, x.mismatches);
+  print_conservation(x);
+  if (x.worst_overlap) {
+    const EventRecord& w = *x.worst_overlap;
+    const double depth = std::max(0.0, -w.gap);
+    fmt::print("  overlap: largest {:.3g}{} at event {} (exact contact function at the engine's time)\n", depth,
+               w.contact_distance > 0 ? fmt::format(" (relative {:.3g})", depth / w.contact_distance) : "", w.index);
+  }
+  print_oracle(c);
+  std::size_t shown = 0;
+  for (const EventRecord& r : c.events)
+    if (oracle::is_failure(r.verdict) && shown++ < kFailuresShown) print_failure(r, s);
+}
+
+namespace {
+
+nlohmann::json summary_json(const SceneCheck& c, const Scene& s) {
+  const Extremes x = extremes_of(c);
+  nlohmann::json j;
+  j["scene"] = c.path;
+  j["name"] = c.name;
+  j["bodies"] = c.bodies;
+  j["scalar"] = c.scalar;
+  j["solver"] = c.solver;
+  j["stop"] = c.stop;
+  j["time"] = c.time;
+  j["horizon"] = c.horizon;
+  const auto n = verdict_counts(c);
+  for (int v = 0; v < oracle::kVerdictCount; ++v)
+    j["verdicts"][std::string(oracle::verdict_name(static_cast<oracle::Verdict>(v)))] = n[static_cast<std::size_t>(v)];
+  j["end_checked"] = c.end_checked;
+  j["end_miss"] = c.end.miss;
+  if (c.end.miss && !c.end.next.pairs.empty())
+    j["end_pair"] = {id_of(s, c.end.next.pairs[0].a), id_of(s, c.end.next.pairs[0].b)};
+  j["median_abs_ulps"] = median(x.abs_ulps);
+  j["largest_ulps"] = x.worst_ulps ? x.worst_ulps->ulps : 0;
+  j["largest_relative_time_error"] = x.worst_relative;
+  j["feature_mismatches"] = x.mismatches;
+  j["largest_energy_change"] = x.worst_energy ? x.worst_energy->energy_change : 0.0;
+  j["largest_momentum_change"] = x.worst_momentum ? x.worst_momentum->momentum_change : 0.0;
+  j["largest_overlap"] = x.worst_overlap ? std::max(0.0, -x.worst_overlap->gap) : 0.0;
+  j["oracle"] = {{"events", c.oracle.events},         {"seconds", c.oracle.seconds},
+                 {"pairs_examined", c.oracle.pairs_examined}, {"pairs_filtered", c.oracle.pairs_filtered},
+                 {"pairs_exact", c.oracle.pairs_exact}, {"features_exact", c.oracle.features_exact},
+                 {"filter", c.filter}};
+  return j;
+}
+
+nlohmann::json event_json(const EventRecord& r, const Scene& s) {
+  nlohmann::json e = {{"index", r.index},
+                      {"t", r.time},
+                      {"a", id_of(s, r.a)},
+                      {"b", id_of(s, r.b)},
+                      {"contact", contact_kind_name(r.features.contact)},
+                      {"features", {r.features.feature_a, r.features.feature_b}},
+                      {"impulse", r.impulse},
+                      {"verdict", oracle::verdict_name(r.verdict)},
+                      {"features_match", r.features_match},
+                      {"energy_change", r.energy_change},
+                      {"momentum_change", r.momentum_change},
+                      {"gap", std::isfinite(r.gap) ? nlohmann::json(r.gap) : nlohmann::json()}};
+  if (r.has_exact_time) {
+    e["exact_time"] = r.exact_time;
+    e["ulps"] = r.ulps;
+    e["relative_error"] = r.relative_error;
+  }
+  if (r.verdict != oracle::Verdict::Agree) {
+    nlohmann::json first = nlohmann::json::array();
+    for (const auto& [a, b] : r.earliest) first.push_back({id_of(s, a), id_of(s, b)});
+    e["earliest"] = first;
+  }
+  return e;
+}
+
+}  // namespace
+
+void write_json(std::ostream& out, const SceneCheck& c, const Scene& s) {
+  std::string head = summary_json(c, s).dump();
+  head.pop_back();  // the closing brace: the events follow
+  out << head << ",\"events\":[";
+  for (std::size_t k = 0; k < c.events.size(); ++k) out << (k ? ",\n" : "\n") << event_json(c.events[k], s).dump();
+  out << "\n]}";
+}
+
+}  // namespace pge::cli

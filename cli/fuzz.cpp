@@ -1,0 +1,158 @@
+#include "fuzz.hpp"
+
+#include "exit_codes.hpp"
+#include "trace.hpp"
+
+#include "pge/generators.hpp"
+#include "pge/invariants.hpp"
+#include "pge/scene_io.hpp"
+
+#include <fmt/core.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+
+namespace pge::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Shrinking stops after this many candidate evaluations: a shrink tree can be deep, and a
+// failure that is already found is worth more written down than shrunk for minutes.
+constexpr int kMaxShrinkEvaluations = 2000;
+
+// rapidcheck's size parameter: cases cycle through sizes 0..100 as rapidcheck's own runs do, so
+// both small and large scenes are made in every shard.
+constexpr int kMaxSize = 100;
+
+std::uint64_t mix(std::uint64_t x) {  // splitmix64 finaliser: independent seeds per case
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+struct Outcome {
+  std::optional<Failure> failure;
+  std::uint64_t events = 0;
+  bool storm = false;
+};
+
+Outcome judge(const Scene& s, const FuzzOptions& o) {
+  InvariantOptions io;
+  io.solver = o.solver;
+  io.storms_fail = o.storms_fail;
+  const InvariantReport r = check_invariants(s, io);
+  return {r.failure, r.events, r.stop == StopReason::EventStorm};
+}
+
+// Greedy descent through rapidcheck's shrink tree: take the first smaller scene that still
+// fails the same way, until none does (or the evaluation budget is spent).
+rc::Shrinkable<GeneratedScene> shrink(rc::Shrinkable<GeneratedScene> current, FailureKind kind, const FuzzOptions& o,
+                                      Failure& failure, int& evaluations) {
+  bool progressed = true;
+  while (progressed && evaluations < kMaxShrinkEvaluations) {
+    progressed = false;
+    auto candidates = current.shrinks();
+    while (auto candidate = candidates.next()) {
+      if (++evaluations > kMaxShrinkEvaluations) break;
+      const Outcome r = judge(candidate->value().scene, o);
+      if (r.failure && r.failure->kind == kind) {
+        current = *candidate;
+        failure = *r.failure;
+        progressed = true;
+        break;
+      }
+    }
+  }
+  return current;
+}
+
+std::string write_failure(const GeneratedScene& g, const Failure& f, const FuzzOptions& o, std::uint64_t case_index) {
+  Scene s = g.scene;
+  const std::string text = write_scene(s);
+  const std::string name = fmt::format("{}-{:016x}", failure_kind_name(f.kind), mix(std::hash<std::string>{}(text)));
+  s.name = name;
+  const std::string note = fmt::format(
+      R"J({{"note": {{"found_by": "pge fuzz --seed {} --shard {}/{} (case {})", "solver": "{}", "failure": "{}", "time": {}, "detail": {}}}}})J",
+      o.seed, o.shard, o.shards, case_index, solver_name(o.solver), failure_kind_name(f.kind), f.time,
+      json_quoted(f.detail));
+  std::filesystem::create_directories(o.out);
+  const std::string path = (std::filesystem::path(o.out) / (name + ".json")).string();
+  write_scene_file(s, path, note);
+  return path;
+}
+
+}  // namespace
+
+int fuzz_command(const FuzzOptions& o) {
+  GenOptions gen_options;
+  gen_options.polygons = o.polygons;
+  const rc::Gen<GeneratedScene> gen = gen_scene(gen_options);
+
+  const auto start = Clock::now();
+  auto next_progress = start + std::chrono::milliseconds(500);
+  std::uint64_t cases = 0, events = 0, storms = 0;
+  std::array<std::uint64_t, static_cast<std::size_t>(FailureKind::Count)> by_kind{};
+  std::vector<std::string> written;
+  const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+
+  // Case k of the whole campaign belongs to shard k mod shards: shards with one seed never
+  // overlap, and together they run exactly the cases of one unsharded campaign.
+  for (std::uint64_t k = o.shard;; k += o.shards) {
+    if (o.cases > 0 && cases >= o.cases) break;
+    if (o.time_limit > 0 && elapsed() >= o.time_limit) break;
+    if (o.cases == 0 && o.time_limit == 0) break;
+    const std::uint64_t case_seed = mix(o.seed ^ mix(k));
+    const int size = static_cast<int>(k % (kMaxSize + 1));
+    const rc::Shrinkable<GeneratedScene> generated = gen(rc::Random(case_seed), size);
+    const Outcome r = judge(generated.value().scene, o);
+    ++cases;
+    events += r.events;
+    storms += r.storm ? 1 : 0;
+    if (r.failure) {
+      ++by_kind[static_cast<std::size_t>(r.failure->kind)];
+      Failure failure = *r.failure;
+      int evaluations = 0;
+      const auto small = shrink(generated, failure.kind, o, failure, evaluations);
+      std::string path;
+      try {
+        path = write_failure(small.value(), failure, o, k);
+      } catch (const std::exception& e) {
+        fmt::print(stderr, "\npge fuzz: cannot write the failing scene to {}: {}\n", o.out, e.what());
+        return kExitOutput;
+      }
+      written.push_back(path);
+      if (!o.quiet)
+        fmt::print(stderr, "{}pge fuzz: case {}: {} at t = {:.17g}: {}; shrunk in {} evaluations to {} bodies: {}\n",
+                   o.progress ? "\r" : "", k, failure_kind_name(failure.kind), failure.time, failure.detail,
+                   evaluations, small.value().scene.bodies.size(), path);
+      if (written.size() >= o.max_failures) break;
+    }
+    if (o.progress && Clock::now() >= next_progress) {
+      next_progress = Clock::now() + std::chrono::milliseconds(500);
+      fmt::print(stderr, "\r{} cases, {} events, {} failures, {:.0f} cases/s   ", cases, events, written.size(),
+                 static_cast<double>(cases) / elapsed());
+    }
+  }
+  const double secs = elapsed();
+  if (o.progress) fmt::print(stderr, "\r{:70}\r", "");
+  if (!o.quiet) {
+    fmt::print("fuzz: seed {}, shard {}/{}, solver {}\n", o.seed, o.shard, o.shards, solver_name(o.solver));
+    fmt::print("  cases: {} in {:.1f} s ({:.0f} cases/s), {} events ({:.0f} events/s)\n", cases, secs,
+               secs > 0 ? static_cast<double>(cases) / secs : 0.0, events,
+               secs > 0 ? static_cast<double>(events) / secs : 0.0);
+    fmt::print("  failures: {}", written.size());
+    for (std::size_t k = 0; k < by_kind.size(); ++k)
+      if (by_kind[k] > 0) fmt::print(", {} {}", by_kind[k], failure_kind_name(static_cast<FailureKind>(k)));
+    fmt::print("\n  event storms (resting contacts, reported, {}): {}\n", o.storms_fail ? "failures" : "not failures",
+               storms);
+    for (const std::string& p : written) fmt::print("  written: {}\n", p);
+  }
+  return written.empty() ? kExitOk : kExitInvariant;
+}
+
+}  // namespace pge::cli

@@ -1,0 +1,28 @@
+// `pge fuzz`: generate scenes, check every invariant, shrink failures into regression fixtures.
+#pragma once
+
+#include "pge/roots.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace pge::cli {
+
+struct FuzzOptions {
+  double time_limit = 0;          // seconds of wall time; 0: no limit (then --cases bounds it)
+  std::uint64_t cases = 0;        // cases to run in this shard; 0: no limit (then --time bounds it)
+  std::uint64_t seed = 1;
+  std::uint32_t shard = 0;        // this shard's index in [0, shards)
+  std::uint32_t shards = 1;
+  SolverKind solver = SolverKind::Robust;
+  std::string out = "fixtures/regressions";  // where shrunk failures are written
+  std::uint32_t max_failures = 10;  // stop after this many distinct failures
+  bool storms_fail = false;
+  bool polygons = true;
+  bool progress = false;
+  bool quiet = false;
+};
+
+int fuzz_command(const FuzzOptions& options);
+
+}  // namespace pge::cli

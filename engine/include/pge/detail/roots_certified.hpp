@@ -1,0 +1,357 @@
+// The certified solver: robust's walk, with every sign it relies on proved by a rigorous error
+// bound, and exact arithmetic (roots_exact.hpp) wherever a bound cannot decide.
+//
+// Structure. For the second derivative (and, to build it, the third), the solver keeps a list of
+// points lo = x0 < x1 < ... < xn = hi with the certified sign of q = p^(k) at each (never zero)
+// and this invariant: between two neighbours with equal signs q has no root; between neighbours
+// with opposite signs it has exactly one distinct root, and the two are adjacent T values. Level
+// k is built from level k+1: where q' keeps its sign q is monotone, so a sign change of q brackets
+// one root, narrowed to adjacent T values; where q' changes sign (an adjacent pair) q has one
+// extremum, and if q has the same sign at both ends a bound on |q'| over the pair proves that the
+// extremum does not reach zero. On the pieces of p'' the walk over p is robust's: p' is monotone
+// there, so p is monotone or has one extremum, bracketed (certified) only when it decides. A
+// downward root is reported as the T whose neighbouring midpoints have opposite certified signs.
+//
+// Signs. q(x) is evaluated in T with the a-priori Horner bound |fl(q(x)) - q(x)| <=
+// gamma(2d) sum |c_k| |x|^k (Higham, "Accuracy and Stability of Numerical Algorithms", 2nd ed.,
+// eq. 5.3), plus one rounding of each derivative coefficient; then, if that cannot decide, in a
+// wider type where x, the midpoints and the derivative coefficients are exact; then exactly.
+// Any structural doubt (a value exactly zero, an extremum within the bound of zero, a bracket
+// that will not close) sends the whole call to the exact solver.
+// Included by pge/roots.hpp.
+#pragma once
+
+#include "pge/constants.hpp"
+#include "pge/detail/roots_exact.hpp"
+#include "pge/scalar.hpp"
+
+#include <boost/math/special_functions/next.hpp>
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace pge {
+namespace detail {
+
+template <class T> class Certifier {
+ public:
+  enum class Verdict { Done, Undecided };
+
+  Certifier(const Poly<T>& p, const T& lo, const T& hi) : lo_(lo), hi_(hi) {
+    d_[0] = p;
+    for (int k = 1; k <= 4; ++k) d_[k] = d_[k - 1].derivative();  // zero past the degree
+  }
+
+  // --- signs
+
+  Evaluation<T> evaluate(int k, const T& x) const { return evaluate_with_bound(d_[k], x); }
+
+  // The exact sign of p^(k)(x): 0 only if the value is exactly zero. Near a root the T
+  // evaluation cannot decide, so `near_root` goes straight to the wider type.
+  int sign(int k, const T& x, bool near_root = false) {
+    if (!near_root) {
+      const Evaluation<T> e = evaluate(k, x);
+      if (abs_of(e.value) > e.bound) return sign_of(e.value);
+    }
+    using W = typename Wider<T>::type;
+    const int s = wide_sign(k, W(x));
+    if (s != 2) return s;
+    return exact::sign_at(exact_poly(k), exact::to_dyadic(x));
+  }
+
+  // The sign of p at the exact midpoint of a and b.
+  int sign_at_midpoint(const T& a, const T& b) {
+    using W = typename Wider<T>::type;
+    const int s = wide_sign(0, (W(a) + W(b)) / W(2));
+    if (s != 2) return s;
+    return exact::sign_at(exact_poly(0), exact::midpoint(exact::to_dyadic(a), exact::to_dyadic(b)));
+  }
+
+  // --- the structure (see the file comment)
+
+  struct Points {
+    int n = 0;
+    T x[16];
+    int s[16];
+    void push(const T& t, int sign) { x[n] = t; s[n] = sign; ++n; }
+  };
+
+  // The structure of p^(k) on [lo, hi] (lo < hi), from that of p^(k+1).
+  Verdict level(int k, Points& out) {
+    const Poly<T>& q = d_[k];
+    out.n = 0;
+    if (q.degree == 0) {
+      const int s = sign_of(q.c[0]);  // never 0: the degree was trimmed exactly
+      out.push(lo_, s);
+      out.push(hi_, s);
+      return Verdict::Done;
+    }
+    Points below;
+    if (level(k + 1, below) == Verdict::Undecided) return Verdict::Undecided;
+    Points all;
+    int s_prev = sign(k, below.x[0]);
+    if (s_prev == 0) return Verdict::Undecided;
+    all.push(below.x[0], s_prev);
+    for (int i = 0; i + 1 < below.n; ++i) {
+      const T& a = below.x[i];
+      const T& b = below.x[i + 1];
+      const int sb = sign(k, b);
+      if (sb == 0) return Verdict::Undecided;
+      if (below.s[i] == below.s[i + 1]) {
+        if (sb != s_prev) {  // q monotone on [a, b]: one root inside
+          T ra, rb;
+          if (narrow(k, a, b, s_prev, ra, rb) == Verdict::Undecided) return Verdict::Undecided;
+          if (ra != a) all.push(ra, s_prev);
+          if (rb != b) all.push(rb, sb);
+        }
+      } else if (sb == s_prev && !extremum_clear(k, a, b, s_prev, below.s[i])) {
+        return Verdict::Undecided;
+      }
+      all.push(b, sb);
+      s_prev = sb;
+    }
+    // Keep the ends and the points next to a sign change: the next level up needs only where
+    // this derivative keeps its sign and where it changes it.
+    for (int i = 0; i < all.n; ++i) {
+      const bool keep = i == 0 || i + 1 == all.n || all.s[i - 1] != all.s[i] || all.s[i] != all.s[i + 1];
+      if (keep) out.push(all.x[i], all.s[i]);
+    }
+    return Verdict::Done;
+  }
+
+  // On [a, b], where q = p^(k) has one extremum (its derivative changes sign from s_slope_a) and
+  // the sign s at both ends: true if q keeps the sign s throughout. Only an extremum towards zero
+  // (a minimum of a positive q, a maximum of a negative one) needs the bound
+  // |q(x) - q(e)| <= w (|q'(e)| + w max|q''|) for e an end and w = b - a.
+  bool extremum_clear(int k, const T& a, const T& b, int s, int s_slope_a) {
+    const bool towards_zero = (s > 0) == (s_slope_a < 0);
+    if (!towards_zero) return true;
+    const T w = b - a;
+    const T r = abs_of(a) > abs_of(b) ? abs_of(a) : abs_of(b);
+    T curvature(0);  // bound on |q''| over [a, b]
+    if (d_[k].degree >= 2) {
+      const Poly<T>& q2 = d_[k + 2];
+      for (int j = q2.degree; j >= 0; --j) curvature = curvature * r + abs_of(q2.c[j]);
+      curvature *= T(1) + T(2 * q2.degree + 4) * unit_roundoff<T>();
+    }
+    const T inflate = T(1) + T(32) * unit_roundoff<T>();
+    for (const T& e : {a, b}) {
+      const Evaluation<T> v = evaluate(k, e), slope = evaluate(k + 1, e);
+      const T drift = (v.bound + w * (abs_of(slope.value) + slope.bound + w * curvature)) * inflate +
+                      T(8) * std::numeric_limits<T>::min();
+      if (sign_of(v.value) == s && abs_of(v.value) > drift) return true;
+    }
+    return false;
+  }
+
+  // q = p^(k) has exactly one root in (a, b), sign s_a at a and -s_a at b: a bracket ra < rb of
+  // adjacent T values around it, with certified signs s_a at ra and -s_a at rb.
+  Verdict narrow(int k, const T& a, const T& b, int s_a, T& ra, T& rb) {
+    const Poly<T>& q = d_[k];
+    T guess;
+    if (q.degree == 1) {
+      guess = -q.c[0] / q.c[1];
+    } else if (q.degree == 2) {
+      T r1 = a, r2 = a;  // no real root in T arithmetic: the bisection below finds it
+      quadratic_roots(q.c[2], q.c[1], q.c[0], r1, r2);
+      guess = r1 > a && r1 < b ? r1 : r2;
+    } else {
+      guess = refine_root(q, d_[k + 2], a, b, s_a);
+    }
+    // Try the adjacent pair on the side of the guess that the certified sign points to.
+    T lo = a, hi = b;
+    if (guess > a && guess < b) {
+      const int sg = sign(k, guess, true);
+      if (sg == 0) return Verdict::Undecided;
+      if (sg == s_a) lo = guess; else hi = guess;
+      const T probe = sg == s_a ? boost::math::float_next(guess) : boost::math::float_prior(guess);
+      if (probe > a && probe < b) {
+        const int sp = sign(k, probe, true);
+        if (sp == 0) return Verdict::Undecided;
+        if (sp == s_a) lo = probe; else hi = probe;
+      }
+    }
+    // Certified bisection for whatever is left (rarely more than nothing).
+    for (int it = 0; it < kMaxRootIterations; ++it) {
+      const T mid = lo + (hi - lo) / T(2);
+      if (!(mid > lo && mid < hi)) {
+        ra = lo;
+        rb = hi;
+        return Verdict::Done;
+      }
+      const int sm = sign(k, mid);
+      if (sm == 0) return Verdict::Undecided;
+      if (sm == s_a) lo = mid; else hi = mid;
+    }
+    return Verdict::Undecided;
+  }
+
+  // The T nearest the single root of p in (a, b), where p falls from positive to negative: the
+  // candidate from Halley's iteration is accepted when p is positive at the midpoint below it and
+  // negative at the midpoint above it; otherwise a certified bracket of adjacent values decides.
+  Verdict nearest_root(const T& a, const T& b, T& t) {
+    T x = a;
+    if (d_[0].degree == 2) {  // the cancellation-free closed form, as robust uses
+      T r1 = a, r2 = a;
+      quadratic_roots(d_[0].c[2], d_[0].c[1], d_[0].c[0], r1, r2);
+      x = r1 > a && r1 < b ? r1 : r2;
+    } else {
+      x = refine_root(d_[0], d_[2], a, b, 1);
+    }
+    if (x > a && x < b) {
+      const T up = boost::math::float_next(x), down = boost::math::float_prior(x);
+      if (sign_at_midpoint(x, up) < 0 && sign_at_midpoint(down, x) > 0) {
+        t = x;
+        return Verdict::Done;
+      }
+    }
+    T ra, rb;
+    if (narrow(0, a, b, 1, ra, rb) == Verdict::Undecided) return Verdict::Undecided;
+    t = nearest(ra, rb, 1);
+    return Verdict::Done;
+  }
+
+  // The T nearest the single root of p in (a, b) (adjacent), p(a) of sign s_a.
+  T nearest(const T& a, const T& b, int s_a) {
+    const int s = sign_at_midpoint(a, b);
+    if (s == 0) {  // a tie: the one with the even significand
+      using std::frexp;
+      using std::ldexp;
+      int e = 0;
+      const T scaled = ldexp(frexp(a, &e), std::numeric_limits<T>::digits);
+      using std::fmod;
+      return fmod(scaled, T(2)) == T(0) ? a : b;
+    }
+    return s == s_a ? b : a;
+  }
+
+  const Poly<T>& derivative(int k) const { return d_[k]; }
+
+ private:
+  // 1 or -1 when the wider evaluation decides, 2 when it cannot.
+  template <class W> int wide_sign(int k, const W& x) const {
+    const Poly<T>& q = d_[0];
+    const int d = q.degree - k;
+    W v(0), s(0);
+    const W ax = x < W(0) ? W(-x) : x;
+    for (int j = q.degree; j >= k; --j) {
+      W c = W(q.c[j]);
+      for (int f = j; f > j - k; --f) c *= W(f);  // j! / (j-k)! c_j, exact in W
+      v = v * x + c;
+      s = s * ax + (c < W(0) ? W(-c) : c);
+    }
+    const W bound = s * W(2 * d + 2) * (std::numeric_limits<W>::epsilon() / W(2)) + W(2 * d + 2) * std::numeric_limits<W>::min();
+    if (v > bound) return 1;
+    if (v < W(-bound)) return -1;
+    if (v == W(0) && s == W(0)) return 0;
+    return 2;
+  }
+
+  const exact::IntPoly& exact_poly(int k) {
+    if (!exact_[k]) {
+      exact::IntPoly e = exact::to_int_poly(d_[0]);
+      for (int j = 0; j < k; ++j) e = exact::derivative(e);
+      exact_[k] = e;
+    }
+    return *exact_[k];
+  }
+
+  T lo_, hi_;
+  Poly<T> d_[5];
+  std::optional<exact::IntPoly> exact_[5];
+};
+
+}  // namespace detail
+
+// The certified solver (see SolverKind). Coefficients and ends must be finite.
+template <class T, class Visit>
+bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& hi, StartRule rule, Visit&& visit) {
+  using detail::sign_of;
+  using Certifier = detail::Certifier<T>;
+  using std::isfinite;
+  if (!(lo <= hi) || !isfinite(lo) || !isfinite(hi)) return false;
+  for (int k = 0; k <= p_in.degree; ++k)
+    if (!isfinite(p_in.c[k])) return false;
+  Poly<T> p = p_in;
+  p.degree = detail::trimmed_degree(p_in);
+  if (p.degree == 0) return false;
+  Certifier cert(p, lo, hi);
+  int visited = 0;
+  auto counted = [&](const T& t, bool overlap) {
+    ++visited;
+    return visit(t, overlap);
+  };
+  auto fall_back = [&] {
+    detail::exact::ExactSolver<T> exact(p, lo, hi);
+    return exact.visit(rule, visited, visit);
+  };
+
+  // The overlap rule at lo: every sign here is certified (the chain ends at a non-zero constant).
+  const int s_lo = cert.sign(0, lo);
+  int after_lo = 0;  // p's sign just after lo when p(lo) = 0, p' decreasing just after lo otherwise
+  if (s_lo <= 0)
+    for (int k = 1; k <= p.degree && after_lo == 0; ++k) after_lo = cert.sign(k, lo);
+  if (after_lo < 0 && (s_lo == 0 || (s_lo < 0 && rule == StartRule::OverlapCollides)))
+    if (counted(lo, s_lo < 0)) return true;
+  if (lo == hi) return false;
+
+  // The pieces of p'' (level 2): p' is monotone on each, or (an adjacent pair) has one extremum.
+  typename Certifier::Points below;
+  if (p.degree >= 2) {
+    if (cert.level(2, below) == Certifier::Verdict::Undecided) return fall_back();
+  } else {  // p' is a constant
+    below.push(lo, 1);
+    below.push(hi, 1);
+  }
+  // Walk the pieces from lo, deciding lazily: the extremum of p in a piece is computed only when
+  // it could hold a downward root, and the walk stops at the first root the visitor accepts.
+  int s_u = s_lo != 0 ? s_lo : after_lo;  // the sign of p just after u
+  int slope_u = cert.sign(1, lo);
+  if (slope_u == 0) return fall_back();
+  for (int i = 0; i + 1 < below.n; ++i) {
+    const T& u = below.x[i];
+    const T& v = below.x[i + 1];
+    const int slope_v = cert.sign(1, v);
+    if (slope_v == 0) return fall_back();
+    if (slope_u == slope_v && below.s[i] != below.s[i + 1] && !cert.extremum_clear(1, u, v, slope_u, below.s[i]))
+      return fall_back();  // p' might touch zero in this adjacent pair
+    const bool has_min = slope_u < 0 && slope_v > 0, has_max = slope_u > 0 && slope_v < 0;
+    const int s_v = cert.sign(0, v);
+    if (s_v == 0) {
+      // A root exactly at a point: at hi it counts when p arrives from above without dipping
+      // first; anything else is left to the exact solver.
+      if (!(v == hi && s_u > 0 && !has_min)) return fall_back();
+      return counted(hi, false);
+    }
+    T t;
+    if (s_u > 0 && s_v < 0) {  // one root in (u, v)
+      if (cert.nearest_root(u, v, t) == Certifier::Verdict::Undecided) return fall_back();
+      if (counted(t, false)) return true;
+    } else if ((s_u > 0 && s_v > 0 && has_min) || (s_u < 0 && s_v < 0 && has_max)) {
+      // The extremum decides: bracket it by adjacent T values (ca, cb) and look at p there.
+      T ca, cb;
+      if (cert.narrow(1, u, v, slope_u, ca, cb) == Certifier::Verdict::Undecided) return fall_back();
+      const int s_ca = cert.sign(0, ca), s_cb = cert.sign(0, cb);
+      if (s_ca == 0 || s_cb == 0) return fall_back();
+      // Minimum: p falls on [u, ca], so a negative p(ca) puts the root there. Maximum: p falls
+      // on [cb, v], so a positive p(cb) puts it there. Otherwise the root, if any, lies in the
+      // adjacent pair itself, where p changes sign at most once.
+      const bool in_first = has_min && s_ca < 0, in_last = has_max && s_cb > 0;
+      if (in_first || in_last) {
+        if (cert.nearest_root(in_first ? u : cb, in_first ? ca : v, t) == Certifier::Verdict::Undecided) return fall_back();
+        if (counted(t, false)) return true;
+      } else if (s_ca > 0 && s_cb < 0) {
+        if (counted(cert.nearest(ca, cb, 1), false)) return true;
+      } else if (s_ca == s_cb && !cert.extremum_clear(0, ca, cb, s_ca, slope_u)) {
+        return fall_back();  // a near-double root: is it real?
+      }
+    }
+    s_u = s_v;
+    slope_u = slope_v;
+  }
+  return false;
+}
+
+}  // namespace pge

@@ -1,0 +1,104 @@
+// What every contact category shares: the predicted contact, the geometry of a contact once it
+// happens, and the squared-distance contact function of two points.
+#pragma once
+
+#include "body_shape.hpp"
+
+#include "pge/constants.hpp"
+#include "pge/event.hpp"
+#include "pge/roots.hpp"
+#include "pge/vec2.hpp"
+
+#include <cstdint>
+#include <optional>
+
+namespace pge {
+
+template <class T> struct PredictedContact {
+  T time;  // relative to the instant of the kinematics
+  ContactKind contact;
+  std::uint16_t feature_a;  // engine feature indices (a segment's side b->a is its edge 1)
+  std::uint16_t feature_b;
+  bool at_start_overlap;
+  bool corner = false;  // a vertex against an edge's end: the corner rule decides the normal
+
+  bool before(const PredictedContact& o) const {
+    if (time != o.time) return time < o.time;
+    if (contact != o.contact) return contact < o.contact;
+    if (feature_a != o.feature_a) return feature_a < o.feature_a;
+    return feature_b < o.feature_b;
+  }
+};
+
+// Keeps the earliest of the contacts offered, in the fixed order of PredictedContact::before.
+template <class T> void keep_earliest(std::optional<PredictedContact<T>>& best, const PredictedContact<T>& c) {
+  if (!best || c.before(*best)) best = c;
+}
+
+template <class T> struct ContactGeometry {
+  Vec2<T> normal;  // from body a towards body b, not normalised
+  Vec2<T> point;
+  T gap;           // signed separation (negative: overlap)
+  T contact_distance;  // radius sum, a circle's radius against a wall or polygon, or the
+                       // smaller size of two polygons / segments
+};
+
+template <class T> struct Separation {
+  T gap;
+  T contact_distance;
+};
+
+// |d + dv t + da t^2 / 2|^2 - r^2: the squared-distance contact function of two points (circle
+// centres, or a centre and a vertex). Degree 2 when the relative acceleration is zero, else 4.
+template <class T> Poly<T> distance_poly(const Vec2<T>& d, const Vec2<T>& dv, const Vec2<T>& da, const T& r) {
+  Poly<T> p;
+  p.c[0] = dot(d, d) - r * r;
+  p.c[1] = T(2) * dot(d, dv);
+  if (da.x == T(0) && da.y == T(0)) {
+    p.c[2] = dot(dv, dv);
+    p.degree = 2;
+  } else {
+    p.c[2] = dot(dv, dv) + dot(d, da);
+    p.c[3] = dot(dv, da);
+    p.c[4] = dot(da, da) / T(4);
+    p.degree = 4;
+  }
+  return p;
+}
+
+// Earliest approaching contact of two points at distance r, relative time in [0, horizon].
+template <class T>
+std::optional<RootOutcome<T>> point_contact(SolverKind solver, const Vec2<T>& d, const Vec2<T>& dv, const Vec2<T>& da, const T& r,
+                                            const T& horizon) {
+  const Poly<T> p = distance_poly(d, dv, da, r);
+  // Without relative acceleration the function is a convex parabola: if it is not decreasing
+  // now it never will be, so most pairs of a gas are dismissed here without a solve.
+  if (p.degree == 2 && p.c[1] >= T(0)) return std::nullopt;
+  const RootOutcome<T> root = earliest_downward_root(solver, p, T(0), horizon);
+  if (root.status != RootStatus::Root) return std::nullopt;
+  return root;
+}
+
+// A line contact function c0 + c1 t + c2 t^2 (a signed distance to a line, scaled) that is
+// non-decreasing for all t >= 0 has no downward root and no overlap-rule root: skipped unsolved.
+template <class T> bool never_decreasing(const Poly<T>& p) { return p.c[1] >= T(0) && p.c[2] >= T(0); }
+
+// The largest coordinate magnitude of the pair at positions pa, pb: the scale of its rounding.
+template <class T>
+T pair_scale(const BodyShape<T>& sa, const Vec2<T>& pa, const BodyShape<T>& sb, const Vec2<T>& pb) {
+  return std::max(sa.coordinate_scale(pa), sb.coordinate_scale(pb));
+}
+
+// Whether the bounding circles of the two bodies (see BodyShape::reach) overlap now or come
+// into contact before the horizon; a pair whose circles do not cannot touch, and is skipped.
+template <class T>
+bool bounding_circles_meet(SolverKind solver, const BodyShape<T>& sa, const Kinematics<T>& ka, const BodyShape<T>& sb,
+                           const Kinematics<T>& kb, const T& horizon) {
+  const T reach = sa.reach + sb.reach;
+  const T r = reach + T(kBoundingSlackRelative) * (reach + pair_scale(sa, ka.p, sb, kb.p));
+  const Vec2<T> d = kb.p - ka.p;
+  if (dot(d, d) <= r * r) return true;
+  return point_contact(solver, d, kb.v - ka.v, kb.a - ka.a, r, horizon).has_value();
+}
+
+}  // namespace pge

@@ -1,0 +1,255 @@
+// Polygons and segments against each other: every vertex of one body against every edge of the
+// other (a point crossing a line, degree <= 2 for translating bodies), as PGE does, plus the
+// two things PGE lacked: a corner rule, so that a vertex meeting a vertex (corner on corner,
+// or parallel edges meeting end to end) is one collision with one normal, and a
+// separating-axis overlap rule, so that a pair left overlapping by rounding still collides.
+//
+// A segment is the outline [a, b] with the edges a->b and b->a (its two sides, see
+// geometry.hpp); its engine edge 1 is reported as the public edge 0.
+#pragma once
+
+#include "contact_common.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+namespace pge {
+
+// The vertices of body P against the edges of body Q, with P's motion relative to Q.
+template <class T> struct OutlineView {
+  const BodyShape<T>& P;
+  const Vec2<T>& pP;
+  const BodyShape<T>& Q;
+  const Vec2<T>& pQ;
+  Vec2<T> dv, da;  // velocity and acceleration of P relative to Q
+
+  // Vertex k of P relative to the start of edge j of Q, at the instant of the positions.
+  Vec2<T> offset(std::size_t k, std::size_t j) const {
+    return (P.base(pP, k) - Q.base(pQ, j)) + (P.offset(k) - Q.offset(j));
+  }
+  // How far vertex k of P is in front of edge j of Q (negative: behind its line).
+  T depth(std::size_t k, std::size_t j) const { return cross(offset(k, j), Q.edges[j]) / Q.edge_length[j]; }
+  // The separating-axis value of Q's edge j: the depth of P's deepest vertex.
+  T axis(std::size_t j) const {
+    T nearest = std::numeric_limits<T>::infinity();
+    for (std::size_t k = 0; k < P.vertex_count(); ++k) nearest = std::min(nearest, depth(k, j));
+    return nearest;
+  }
+};
+
+template <class T> OutlineView<T> view_of(const BodyShape<T>& P, const Kinematics<T>& kP, const BodyShape<T>& Q,
+                                          const Kinematics<T>& kQ) {
+  return {P, kP.p, Q, kQ.p, kP.v - kQ.v, kP.a - kQ.a};
+}
+
+// The overlap of the pair by the separating-axis test: the least penetration (the largest axis
+// value, negative), or nothing when some axis separates or touches. Only the vertex/edge pairs
+// that realise it measure a real separation, so only they may collide by the overlap rule.
+template <class T> std::optional<T> least_penetration(const OutlineView<T>& pq, const OutlineView<T>& qp) {
+  T best = -std::numeric_limits<T>::infinity();
+  for (const OutlineView<T>* o : {&pq, &qp}) {
+    for (std::size_t j = 0; j < o->Q.vertex_count(); ++j) {
+      const T s = o->axis(j);
+      if (s >= T(0)) return std::nullopt;
+      best = std::max(best, s);
+    }
+  }
+  return best;
+}
+
+// The interior directions of an outline at vertex i: back along the edge arriving there and
+// along the edge leaving it (one direction twice at a segment's end).
+template <class T> std::array<Vec2<T>, 2> interior_directions(const BodyShape<T>& s, std::size_t i) {
+  const std::size_t n = s.vertex_count();
+  return {-s.edges[(i + n - 1) % n], s.edges[i]};
+}
+
+// A cone of directions by its two bounding rays: `cw` is the clockwise-most, `ccw` the
+// counter-clockwise-most; the cone is at most a half-plane.
+template <class T> struct Cone {
+  Vec2<T> cw, ccw;
+};
+
+// The overlap cone of vertex k of P touching Q at a point where Q's interior directions are
+// `q` (at a vertex of Q: interior_directions; inside a segment: both directions along it): the
+// displacements of P relative to Q that make the bodies overlap, spanned by `q` and the reverse
+// of P's interior directions at k. (It is the interior angle of the Minkowski difference of the
+// two bodies there, at most a half-plane while the bodies do not overlap.) Nothing when it has
+// no interior (two collinear segments end to end).
+template <class T>
+std::optional<Cone<T>> overlap_cone(const BodyShape<T>& P, std::size_t k, const std::array<Vec2<T>, 2>& q) {
+  const auto p = interior_directions(P, k);
+  const std::array<Vec2<T>, 4> g{q[0], q[1], -p[0], -p[1]};
+  // Any positive combination of the generators lies strictly inside the cone when it has an
+  // interior: a reference direction from which the two bounding rays are told apart.
+  const Vec2<T> r = g[0] + g[1] + g[2] + g[3];
+  std::optional<Vec2<T>> cw, ccw;
+  for (const Vec2<T>& gi : g) {
+    if (cross(gi, r) > T(0)) {
+      if (!cw || cross(*cw, gi) < T(0)) cw = gi;
+    } else if (cross(r, gi) > T(0)) {
+      if (!ccw || cross(*ccw, gi) > T(0)) ccw = gi;
+    }
+  }
+  if (!cw || !ccw) return std::nullopt;
+  return Cone<T>{*cw, *ccw};
+}
+
+// Whether a point leaving the cone's apex with velocity u and acceleration a goes strictly
+// inside it: u inside; or u along a bounding ray and a turning it inwards; or u zero and a inside.
+template <class T> bool enters_cone(const Cone<T>& cone, const Vec2<T>& u, const Vec2<T>& a) {
+  const T right_of_cw = cross(cone.cw, u);
+  const T left_of_ccw = cross(u, cone.ccw);
+  if (u.x == T(0) && u.y == T(0)) return cross(cone.cw, a) > T(0) && cross(a, cone.ccw) > T(0);
+  if (right_of_cw > T(0) && left_of_ccw > T(0)) return true;
+  if (right_of_cw == T(0) && left_of_ccw > T(0)) return cross(cone.cw, a) > T(0);
+  if (left_of_ccw == T(0) && right_of_cw > T(0)) return cross(a, cone.ccw) > T(0);
+  return false;
+}
+
+// The normal of a corner contact, from Q towards P: the bisector of the cone's two outward
+// normals (the normal cone of the Minkowski difference at that vertex). An impulse along any
+// normal in that cone separates the bodies; the bisector is the one that depends only on the
+// geometry, not on which of the corner's feature pairs a rounded root time found first. For
+// parallel edges meeting end to end the two normals coincide with the edges' common normal.
+template <class T> Vec2<T> corner_normal(const Cone<T>& cone) {
+  using std::sqrt;
+  const Vec2<T> n_cw{cone.cw.y, -cone.cw.x};
+  const Vec2<T> n_ccw = perp(cone.ccw);
+  return n_cw * (T(1) / sqrt(dot(n_cw, n_cw))) + n_ccw * (T(1) / sqrt(dot(n_ccw, n_ccw)));
+}
+
+// Where on edge e a vertex at d (relative to the edge's start) moving at u lies.
+enum class EdgeSpot : std::uint8_t { Off, Start, Interior, End };
+
+template <class T>
+EdgeSpot locate_on_edge(const Vec2<T>& d, const Vec2<T>& u, const Vec2<T>& e, const T& len, const T& scale) {
+  using std::abs;
+  const T along = dot(d, e);  // |e| times the distance from the start, along the edge
+  const T ee = dot(e, e);
+  // The corner slack (constants.hpp) in the same units, widened where the root's rounding in
+  // time moves the contact point along the edge: by the tangential over the normal speed.
+  T slack = T(kCornerSlackUlps) * std::numeric_limits<T>::epsilon() * scale * len;
+  const T normal_speed = abs(cross(u, e));
+  if (normal_speed > T(0)) slack = slack * (T(1) + abs(dot(u, e)) / normal_speed);
+  slack = std::min(slack, ee / T(2));
+  if (along < -slack || along > ee + slack) return EdgeSpot::Off;
+  if (along <= slack) return EdgeSpot::Start;
+  if (along >= ee - slack) return EdgeSpot::End;
+  return EdgeSpot::Interior;
+}
+
+template <class T> struct VertexEdgeHit {
+  T t;
+  bool overlap;
+  bool corner;
+};
+
+// Whether a downward root t of the contact function of vertex k of P with edge j of Q (d0:
+// the vertex relative to the edge's start at t = 0) is a collision, and of which kind.
+template <class T>
+std::optional<VertexEdgeHit<T>> judge_root(const OutlineView<T>& o, std::size_t k, std::size_t j, const Vec2<T>& d0,
+                                           const T& t, bool overlap, const T& scale) {
+  const Vec2<T>& e = o.Q.edges[j];
+  const Vec2<T> d = d0 + o.dv * t + o.da * (t * t / T(2));
+  const Vec2<T> u = o.dv + o.da * t;
+  const EdgeSpot spot = locate_on_edge(d, u, e, o.Q.edge_length[j], scale);
+  if (spot == EdgeSpot::Off) return std::nullopt;
+  // Crossing a polygon's edge inside it is entering the polygon. A segment has two sides and no
+  // inside: a vertex crossing its line enters only from the side P's body is on (rounding can
+  // leave a vertex that has just bounced an ulp beyond the line), which the overlap cone tells,
+  // as it does at corners.
+  if (overlap || (spot == EdgeSpot::Interior && o.Q.kind != ShapeKind::Segment))
+    return VertexEdgeHit<T>{t, overlap, false};
+  const bool corner = spot != EdgeSpot::Interior;
+  const std::size_t w = spot == EdgeSpot::End ? (j + 1) % o.Q.vertex_count() : j;
+  const std::optional<Cone<T>> cone =
+      overlap_cone(o.P, k, corner ? interior_directions(o.Q, w) : std::array<Vec2<T>, 2>{e, -e});
+  if (!cone || !enters_cone(*cone, u, o.da)) return std::nullopt;  // passed or left, not entered
+  return VertexEdgeHit<T>{t, false, corner};
+}
+
+// The earliest approaching contact of vertex k of P with edge j of Q in [0, horizon]. The
+// contact function is the distance of the vertex in front of the edge's line times |e|, a
+// quadratic; a root counts where judge_root says so.
+template <class T>
+std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const OutlineView<T>& o, std::size_t k,
+                                                    std::size_t j, StartRule rule, const T& scale, const T& horizon) {
+  const Vec2<T> d0 = o.offset(k, j);
+  const Vec2<T>& e = o.Q.edges[j];
+  Poly<T> p;
+  p.c[0] = cross(d0, e);
+  p.c[1] = cross(o.dv, e);
+  p.c[2] = cross(o.da, e) / T(2);
+  p.degree = 2;
+  if (never_decreasing(p)) return std::nullopt;
+  std::optional<VertexEdgeHit<T>> hit;
+  visit_downward_roots(solver, p, T(0), horizon, rule, [&](const T& t, bool overlap) {
+    hit = judge_root(o, k, j, d0, t, overlap, scale);
+    return hit.has_value();
+  });
+  return hit;
+}
+
+// Every vertex of P against every edge of Q, offered as `kind` (VertexEdge when P is body a).
+template <class T>
+void scan_vertex_edge(SolverKind solver, const OutlineView<T>& o, ContactKind kind, const std::optional<T>& overlap,
+                      const T& scale, const T& horizon, std::optional<PredictedContact<T>>& best) {
+  for (std::size_t j = 0; j < o.Q.vertex_count(); ++j) {
+    const bool axis_is_least = overlap && o.axis(j) == *overlap;
+    for (std::size_t k = 0; k < o.P.vertex_count(); ++k) {
+      const bool real = axis_is_least && o.depth(k, j) == *overlap;
+      const StartRule rule = real ? StartRule::OverlapCollides : StartRule::CrossingsOnly;
+      const auto hit = vertex_edge_contact(solver, o, k, j, rule, scale, horizon);
+      if (!hit) continue;
+      const auto vk = static_cast<std::uint16_t>(k), ej = static_cast<std::uint16_t>(j);
+      const bool p_is_a = kind == ContactKind::VertexEdge;
+      keep_earliest(best, PredictedContact<T>{hit->t, kind, p_is_a ? vk : ej, p_is_a ? ej : vk, hit->overlap,
+                                              hit->corner});
+    }
+  }
+}
+
+// The earliest approaching contact of two polygons / segments.
+template <class T>
+std::optional<PredictedContact<T>> outline_contact(SolverKind solver, const BodyShape<T>& sa, const Kinematics<T>& ka,
+                                                   const BodyShape<T>& sb, const Kinematics<T>& kb, const T& horizon) {
+  const OutlineView<T> ab = view_of(sa, ka, sb, kb);  // a's vertices against b's edges
+  const OutlineView<T> ba = view_of(sb, kb, sa, ka);
+  const std::optional<T> overlap = least_penetration(ab, ba);
+  const T scale = pair_scale(sa, ka.p, sb, kb.p);
+  std::optional<PredictedContact<T>> best;
+  scan_vertex_edge(solver, ab, ContactKind::VertexEdge, overlap, scale, horizon, best);
+  scan_vertex_edge(solver, ba, ContactKind::EdgeVertex, overlap, scale, horizon, best);
+  return best;
+}
+
+// Geometry of a vertex/edge contact, the normal from a towards b: the edge's outward normal, or
+// at a corner the corner normal. The gap is the vertex's distance in front of the edge's line.
+template <class T>
+ContactGeometry<T> outline_geometry(ContactKind kind, std::uint16_t fa, std::uint16_t fb, bool corner, const BodyShape<T>& sa,
+                                    const Kinematics<T>& ka, const BodyShape<T>& sb, const Kinematics<T>& kb) {
+  const bool a_has_vertex = kind == ContactKind::VertexEdge;
+  const OutlineView<T> o = a_has_vertex ? view_of(sa, ka, sb, kb) : view_of(sb, kb, sa, ka);
+  const std::size_t k = a_has_vertex ? fa : fb;
+  const std::size_t j = a_has_vertex ? fb : fa;
+  const Vec2<T>& e = o.Q.edges[j];
+  const Vec2<T> d = o.offset(k, j);
+  Vec2<T> n = outward_normal(e);  // from Q (the edge's body) towards P (the vertex's)
+  if (corner) {
+    const std::size_t w = dot(d, e) <= dot(e, e) / T(2) ? j : (j + 1) % o.Q.vertex_count();
+    if (const auto cone = overlap_cone(o.P, k, interior_directions(o.Q, w))) n = corner_normal(*cone);
+  }
+  return {a_has_vertex ? -n : n, o.P.vertex(o.pP, k), cross(d, e) / o.Q.edge_length[j], std::min(sa.size, sb.size)};
+}
+
+// The public index of an engine edge (a segment's side b->a is its edge 0).
+template <class T> std::uint16_t public_edge(const BodyShape<T>& s, std::uint16_t edge) {
+  return s.kind == ShapeKind::Segment ? std::uint16_t(0) : edge;
+}
+
+}  // namespace pge

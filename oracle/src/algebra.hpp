@@ -1,0 +1,93 @@
+// Vectors and polynomials (degree <= 4) over a number type N: Dyadic for the exact path,
+// Interval for the filter. One body of formulas, two number types, so that the filter bounds
+// exactly the function the exact path decides on.
+#pragma once
+
+#include <array>
+#include <stdexcept>
+
+namespace pge::oracle::detail {
+
+template <class N> struct V2 {
+  N x{}, y{};
+};
+template <class N> V2<N> operator+(const V2<N>& a, const V2<N>& b) { return {a.x + b.x, a.y + b.y}; }
+template <class N> V2<N> operator-(const V2<N>& a, const V2<N>& b) { return {a.x - b.x, a.y - b.y}; }
+template <class N> V2<N> operator*(const V2<N>& a, const N& s) { return {a.x * s, a.y * s}; }
+template <class N> N dot(const V2<N>& a, const V2<N>& b) { return a.x * b.x + a.y * b.y; }
+template <class N> N cross(const V2<N>& a, const V2<N>& b) { return a.x * b.y - a.y * b.x; }
+
+inline constexpr int kMaxDegree = 4;  // contact functions of translating bodies
+
+// p(x) = c[0] + c[1] x + ... + c[deg] x^deg (c[deg] may be zero).
+template <class N> struct Poly {
+  std::array<N, kMaxDegree + 1> c{};
+  int deg = 0;
+
+  static Poly constant(const N& v) {
+    Poly p;
+    p.c[0] = v;
+    return p;
+  }
+};
+
+template <class N> Poly<N> operator+(const Poly<N>& a, const Poly<N>& b) {
+  Poly<N> r;
+  r.deg = a.deg > b.deg ? a.deg : b.deg;
+  for (int k = 0; k <= r.deg; ++k) r.c[k] = (k <= a.deg ? a.c[k] : N{}) + (k <= b.deg ? b.c[k] : N{});
+  return r;
+}
+
+template <class N> Poly<N> operator-(const Poly<N>& a) {
+  Poly<N> r = a;
+  for (int k = 0; k <= r.deg; ++k) r.c[k] = -a.c[k];
+  return r;
+}
+
+template <class N> Poly<N> operator-(const Poly<N>& a, const Poly<N>& b) { return a + (-b); }
+
+template <class N> Poly<N> operator*(const Poly<N>& a, const N& s) {
+  Poly<N> r = a;
+  for (int k = 0; k <= r.deg; ++k) r.c[k] = a.c[k] * s;
+  return r;
+}
+
+template <class N> Poly<N> operator*(const Poly<N>& a, const Poly<N>& b) {
+  if (a.deg + b.deg > kMaxDegree) throw std::logic_error("oracle polynomial degree above 4");
+  Poly<N> r;
+  r.deg = a.deg + b.deg;
+  for (int i = 0; i <= a.deg; ++i)
+    for (int j = 0; j <= b.deg; ++j) r.c[i + j] = r.c[i + j] + a.c[i] * b.c[j];
+  return r;
+}
+
+template <class N> Poly<N> derivative(const Poly<N>& p) {
+  Poly<N> d;
+  d.deg = p.deg > 0 ? p.deg - 1 : 0;
+  for (int k = 1; k <= p.deg; ++k) d.c[k - 1] = p.c[k] * N(k);
+  return d;
+}
+
+template <class N> N evaluate(const Poly<N>& p, const N& x) {
+  N r = p.c[p.deg];
+  for (int k = p.deg - 1; k >= 0; --k) r = r * x + p.c[k];
+  return r;
+}
+
+// A point moving with constant acceleration: x(tau), y(tau) of degree <= 2.
+template <class N> struct PointPath {
+  Poly<N> x, y;
+};
+
+template <class N> PointPath<N> operator-(const PointPath<N>& a, const PointPath<N>& b) { return {a.x - b.x, a.y - b.y}; }
+
+template <class N> PointPath<N> constant_path(const V2<N>& p) { return {Poly<N>::constant(p.x), Poly<N>::constant(p.y)}; }
+
+template <class N> PointPath<N> shifted(const PointPath<N>& a, const V2<N>& offset) {
+  PointPath<N> r = a;
+  r.x.c[0] = r.x.c[0] + offset.x;
+  r.y.c[0] = r.y.c[0] + offset.y;
+  return r;
+}
+
+}  // namespace pge::oracle::detail

@@ -1,0 +1,111 @@
+#include "pge/oracle_exact.hpp"
+
+#include <algorithm>
+
+namespace pge::oracle {
+
+Dyadic::Dyadic(long value) : m_(value) { normalize(); }
+
+Dyadic::Dyadic(mpz_class mantissa, long exponent) : m_(std::move(mantissa)), e_(exponent) { normalize(); }
+
+// Canonical form: an odd mantissa (or zero with exponent 0), so that equal values have equal
+// representations and mantissas stay as short as the value allows.
+void Dyadic::normalize() {
+  if (m_ == 0) {
+    e_ = 0;
+    return;
+  }
+  const mp_bitcnt_t zeros = mpz_scan1(m_.get_mpz_t(), 0);
+  if (zeros > 0) {
+    mpz_fdiv_q_2exp(m_.get_mpz_t(), m_.get_mpz_t(), zeros);
+    e_ += static_cast<long>(zeros);
+  }
+}
+
+Dyadic Dyadic::scaled(long k) const {
+  Dyadic r = *this;
+  if (!r.is_zero()) r.e_ += k;
+  return r;
+}
+
+Dyadic Dyadic::abs() const {
+  Dyadic r = *this;
+  r.m_ = ::abs(r.m_);
+  return r;
+}
+
+Dyadic Dyadic::operator-() const {
+  Dyadic r = *this;
+  r.m_ = -r.m_;
+  return r;
+}
+
+Dyadic operator+(const Dyadic& a, const Dyadic& b) {
+  if (a.is_zero()) return b;
+  if (b.is_zero()) return a;
+  const long e = std::min(a.e_, b.e_);
+  mpz_class ma = a.m_, mb = b.m_;
+  ma <<= static_cast<mp_bitcnt_t>(a.e_ - e);
+  mb <<= static_cast<mp_bitcnt_t>(b.e_ - e);
+  return Dyadic(ma + mb, e);
+}
+
+Dyadic operator-(const Dyadic& a, const Dyadic& b) { return a + (-b); }
+
+Dyadic operator*(const Dyadic& a, const Dyadic& b) {
+  if (a.is_zero() || b.is_zero()) return {};
+  Dyadic r;
+  r.m_ = a.m_ * b.m_;  // odd times odd is odd: already canonical
+  r.e_ = a.e_ + b.e_;
+  return r;
+}
+
+int compare(const Dyadic& a, const Dyadic& b) {
+  const int sa = a.sign(), sb = b.sign();
+  if (sa != sb) return sa < sb ? -1 : 1;
+  if (sa == 0) return 0;
+  return (a - b).sign();
+}
+
+double Dyadic::to_double() const {
+  const Dyadic r = round_to_format(*this, TimeFormat::of<double>());
+  // r has at most 53 significant bits, so both conversions below are exact.
+  return std::ldexp(r.m_.get_d(), static_cast<int>(std::clamp(r.e_, -2200L, 2200L)));
+}
+
+mpq_class Dyadic::to_mpq() const {
+  mpq_class q(m_);
+  if (e_ >= 0) {
+    mpz_class scale = 1;
+    scale <<= static_cast<mp_bitcnt_t>(e_);
+    q *= scale;
+  } else {
+    mpz_class scale = 1;
+    scale <<= static_cast<mp_bitcnt_t>(-e_);
+    q /= scale;
+  }
+  q.canonicalize();
+  return q;
+}
+
+namespace {
+
+template <class Divide> Dyadic on_grid(const mpq_class& q, long bits, Divide divide) {
+  mpz_class scaled = q.get_num();
+  scaled <<= static_cast<mp_bitcnt_t>(bits);
+  mpz_class n;
+  divide(n.get_mpz_t(), scaled.get_mpz_t(), q.get_den_mpz_t());
+  return Dyadic(n, -bits);
+}
+
+}  // namespace
+
+Dyadic grid_floor(const mpq_class& q, long bits) { return on_grid(q, bits, mpz_fdiv_q); }
+Dyadic grid_ceil(const mpq_class& q, long bits) { return on_grid(q, bits, mpz_cdiv_q); }
+
+std::string Dyadic::to_string() const {
+  if (e_ == 0) return m_.get_str();
+  return m_.get_str() + "*2^" + std::to_string(e_);
+}
+
+}  // namespace pge::oracle

@@ -1,0 +1,79 @@
+// Exact measurements of one engine event: conservation across it, and the gap of its features.
+#include "features.hpp"
+#include "judging.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace pge::oracle::detail {
+namespace {
+
+ExactVec position_at(const ExactMotion& m, const Dyadic& t) {
+  const Dyadic d = t - m.t0;
+  const Dyadic h = (d * d).scaled(-1);
+  return {m.p0.x + m.v0.x * d + m.acc.x * h, m.p0.y + m.v0.y * d + m.acc.y * h};
+}
+
+Dyadic dot(const ExactVec& a, const ExactVec& b) { return a.x * b.x + a.y * b.y; }
+
+// Kinetic energy m v.v / 2 plus the potential of the body's constant acceleration field,
+// -m acc.p, at time t on the given motion.
+Dyadic energy(const Dyadic& mass, const ExactVec& v, const ExactMotion& m, const Dyadic& t) {
+  return mass * (dot(v, v).scaled(-1) - dot(m.acc, position_at(m, t)));
+}
+
+double length(const ExactVec& v) { return std::sqrt(dot(v, v).to_double()); }
+
+}  // namespace
+
+Conservation measure_conservation(const ExactBody& a, const ExactBody& b, const ExactEvent& e,
+                                  const ExactMotion& a_after, const ExactMotion& b_after) {
+  Conservation c;
+  c.both_moving = !a.fixed && !b.fixed;
+  c.elastic = a.restitution == Dyadic(1) && b.restitution == Dyadic(1);
+  const struct {
+    const ExactBody& body;
+    const ExactVec &before, &after;
+    const ExactMotion& motion_after;
+  } sides[2] = {{a, e.va_before, e.va_after, a_after}, {b, e.vb_before, e.vb_after, b_after}};
+  for (const auto& s : sides) {
+    if (s.body.fixed) continue;
+    c.energy_change += energy(s.body.mass, s.after, s.motion_after, e.time) -
+                       energy(s.body.mass, s.before, s.body.motion, e.time);
+    c.momentum_change.x += s.body.mass * (s.after.x - s.before.x);
+    c.momentum_change.y += s.body.mass * (s.after.y - s.before.y);
+    c.kinetic_before += (s.body.mass * dot(s.before, s.before)).to_double() / 2;
+    c.momentum_scale += s.body.mass.to_double() * length(s.before);
+  }
+  return c;
+}
+
+GapMeasure measure_gap(Frame& fr, FeatureCache& features, BodyIndex a, BodyIndex b, const FeaturePair& id,
+                       const Dyadic& tau) {
+  for (const Feature& ft : features.of(fr, a, b)) {
+    if (!(ft.id == id)) continue;
+    const ContactPolys<Dyadic> c = contact_polys<Dyadic>(ft, fr);
+    const BodyModel<Dyadic>& pb = fr.exact_body(ft.point.body);
+    const Dyadic f = evaluate(c.f, tau);
+    if (!ft.to_edge) {
+      // |D|^2 - R^2 = (|D| - R)(|D| + R): the difference is exact, the sum is not cancelling.
+      const PointPath<Dyadic> d = point_of<Dyadic>(fr, ft.other.body, ft.other.vertex) -
+                                  point_of<Dyadic>(fr, ft.point.body, ft.point.vertex);
+      const Dyadic dx = evaluate(d.x, tau), dy = evaluate(d.y, tau);
+      const Dyadic reach = (ft.point.vertex < 0 ? pb.radius : Dyadic()) +
+                           (ft.other.vertex < 0 ? fr.exact_body(ft.other.body).radius : Dyadic());
+      const double r = reach.to_double();
+      return {f.to_double() / (std::sqrt((dx * dx + dy * dy).to_double()) + r), r};
+    }
+    const double len = std::sqrt(c.length2.to_double());
+    const double s = evaluate(c.side, tau).to_double();
+    if (ft.point.vertex >= 0) return {f.to_double() / len, 0.0};  // f = sigma s
+    const double r = pb.radius.to_double();
+    if (ft.one_sided && s <= 0) return {s / len - r, r};  // behind the line: no cancellation
+    // s^2 - r^2 e.e = (|s| - r|e|)(|s| + r|e|), and the distance is (|s| - r|e|) / |e|.
+    return {f.to_double() / (len * (std::abs(s) + r * len)), r};
+  }
+  return {std::numeric_limits<double>::quiet_NaN(), 0.0};
+}
+
+}  // namespace pge::oracle::detail

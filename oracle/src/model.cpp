@@ -1,0 +1,74 @@
+#include "model.hpp"
+
+namespace pge::oracle::detail {
+namespace {
+
+V2<Dyadic> exact_vec(const ExactVec& v) { return {v.x, v.y}; }
+V2<Interval> interval_vec(const ExactVec& v) { return {Interval::enclose(v.x), Interval::enclose(v.y)}; }
+
+template <class N, class Convert> BodyModel<N> model_of(const ExactBody& b, Convert convert) {
+  BodyModel<N> m;
+  m.shape = b.shape;
+  m.fixed = b.fixed;
+  for (const ExactVec& v : b.local) m.local.push_back(convert(v));
+  for (const ExactVec& v : b.world) m.world.push_back(convert(v));
+  return m;
+}
+
+}  // namespace
+
+Interval Interval::enclose(const Dyadic& x) {
+  const double d = x.to_double();  // the nearest double: within half an ulp of x
+  if (!std::isfinite(d)) return whole();
+  if (Dyadic::from(d) == x) return Interval(d);
+  return {next_down(d), next_up(d)};
+}
+
+BodyModel<Dyadic> exact_model(const ExactBody& b) {
+  BodyModel<Dyadic> m = model_of<Dyadic>(b, exact_vec);
+  m.radius = b.radius;
+  set_motion(m, b.motion);
+  return m;
+}
+
+BodyModel<Interval> interval_model(const ExactBody& b) {
+  BodyModel<Interval> m = model_of<Interval>(b, interval_vec);
+  m.radius = Interval::enclose(b.radius);
+  set_motion(m, b.motion);
+  return m;
+}
+
+void set_motion(BodyModel<Dyadic>& m, const ExactMotion& motion) {
+  m.t0 = motion.t0;
+  m.p0 = exact_vec(motion.p0);
+  m.v0 = exact_vec(motion.v0);
+  m.acc = exact_vec(motion.acc);
+}
+
+void set_motion(BodyModel<Interval>& m, const ExactMotion& motion) {
+  m.t0 = Interval::enclose(motion.t0);
+  m.p0 = interval_vec(motion.p0);
+  m.v0 = interval_vec(motion.v0);
+  m.acc = interval_vec(motion.acc);
+}
+
+Frame::Frame(const std::vector<BodyModel<Dyadic>>& exact, const std::vector<BodyModel<Interval>>& interval,
+             const Dyadic& now)
+    : exact_(exact),
+      interval_(interval),
+      now_(now),
+      now_interval_(Interval::enclose(now)),
+      exact_paths_(exact.size()),
+      interval_paths_(exact.size()) {}
+
+const PointPath<Dyadic>& Frame::reference(BodyIndex i, const Dyadic*) {
+  if (!exact_paths_[i]) exact_paths_[i] = reference_path(exact_[i], now_);
+  return *exact_paths_[i];
+}
+
+const PointPath<Interval>& Frame::reference(BodyIndex i, const Interval*) {
+  if (!interval_paths_[i]) interval_paths_[i] = reference_path(interval_[i], now_interval_);
+  return *interval_paths_[i];
+}
+
+}  // namespace pge::oracle::detail

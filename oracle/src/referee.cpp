@@ -1,0 +1,196 @@
+#include "judging.hpp"
+#include "pge/oracle.hpp"
+#include "search.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace pge::oracle {
+
+using namespace detail;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Found {
+  BodyPair pair;
+  PairResult result;
+};
+
+// The earliest of the contacts found, with every pair touching then (ascending pairs).
+NextEvent earliest_of(const Dyadic& now, const std::vector<Found>& found) {
+  NextEvent next;
+  const RealRoot* best = nullptr;
+  for (const Found& f : found)
+    if (!best || compare(*f.result.tau, *best) < 0) best = f.result.tau.get();
+  if (!best) return next;
+  for (const Found& f : found) {
+    if (compare(*f.result.tau, *best) != 0) continue;
+    if (!next.time) next.time = ExactTime(now, f.result.tau);
+    next.pairs.push_back({f.pair.first, f.pair.second, f.result.features, f.result.overlap_rule});
+  }
+  std::sort(next.pairs.begin(), next.pairs.end(),
+            [](const PairContact& p, const PairContact& q) { return std::pair(p.a, p.b) < std::pair(q.a, q.b); });
+  return next;
+}
+
+// The window's end is rounded up to a multiple of 2^-kWindowBits seconds from the engine pair's
+// exact time (an upper bound of it). A wider window only costs candidate pairs, never
+// correctness; 2^-64 s is below one ulp of every time from 2^-11 s on. Bits below the point.
+constexpr long kWindowBits = 64;
+
+}  // namespace
+
+struct Referee::Impl {
+  ExactState state;
+  RefereeOptions options;
+  RefereeStats stats;
+  std::vector<BodyModel<Dyadic>> exact;
+  std::vector<BodyModel<Interval>> interval;
+  FeatureCache features;
+
+  Frame frame() const { return Frame(exact, interval, state.now); }
+
+  void count(const SearchCounters& n) {
+    stats.pairs_examined += n.pairs_examined;
+    stats.pairs_filtered += n.pairs_filtered;
+    stats.pairs_exact += n.pairs_exact;
+    stats.features_exact += n.features_exact;
+  }
+
+  // Exact contacts of the candidate pairs (and of `extra`, already solved) up to tau_hi.
+  NextEvent search(Frame& fr, const Dyadic& tau_hi, BodyPair skip, std::vector<Found> found) {
+    SearchCounters n;
+    const Interval window(0.0, Interval::enclose(tau_hi).hi());
+    const std::vector<BodyPair> pairs = candidate_pairs(fr, features, window, options.filter, skip, n);
+    n.pairs_exact += pairs.size();
+    for (const BodyPair& p : pairs)
+      if (auto r = pair_contact(fr, features, p.first, p.second, tau_hi, window, options.filter, n))
+        found.push_back({p, *r});
+    count(n);
+    return earliest_of(fr.now(), found);
+  }
+
+  // The engine's pair, solved exactly to the horizon.
+  std::optional<PairResult> own_contact(Frame& fr, const ExactEvent& e) {
+    SearchCounters n;
+    n.pairs_exact = 1;
+    const Dyadic tau = time_to_horizon();
+    auto own = pair_contact(fr, features, e.a, e.b, tau, Interval(0.0, Interval::enclose(tau).hi()), options.filter, n);
+    count(n);
+    return own;
+  }
+
+  // The search window's end, as time since now: every contact that can decide the verdict lies
+  // before the engine's time plus agree_ulps + 1 ulps, or the engine pair's own exact time,
+  // whichever is later (never past the horizon).
+  Dyadic window_end(const ExactEvent& e, const std::optional<ExactTime>& own) const {
+    Dyadic t_hi = format_step(round_to_format(e.time, state.format), options.agree_ulps + 1, state.format);
+    if (own) t_hi = std::max(t_hi, grid_ceil(own->bracket(kWindowBits).second, kWindowBits));
+    const Dyadic tau = std::min(t_hi, state.horizon) - state.now;
+    return tau.sign() < 0 ? Dyadic() : tau;
+  }
+
+  Dyadic time_to_horizon() const {
+    const Dyadic tau = state.horizon - state.now;
+    return tau.sign() < 0 ? Dyadic() : tau;
+  }
+
+  void advance(const ExactEvent& e, const ExactMotion& a_after, const ExactMotion& b_after) {
+    const std::pair<BodyIndex, const ExactMotion*> updates[2] = {{e.a, &a_after}, {e.b, &b_after}};
+    for (const auto& [i, m] : updates) {
+      if (state.bodies[i].fixed) continue;
+      state.bodies[i].motion = *m;
+      set_motion(exact[i], *m);
+      set_motion(interval[i], *m);
+    }
+    state.now = std::max(state.now, e.time);
+  }
+};
+
+Referee::Referee(ExactState state, RefereeOptions options) : impl_(std::make_unique<Impl>()) {
+  impl_->state = std::move(state);
+  impl_->options = options;
+  for (const ExactBody& b : impl_->state.bodies) {
+    impl_->exact.push_back(exact_model(b));
+    impl_->interval.push_back(interval_model(b));
+  }
+}
+
+Referee::~Referee() = default;
+Referee::Referee(Referee&&) noexcept = default;
+Referee& Referee::operator=(Referee&&) noexcept = default;
+
+const ExactState& Referee::state() const { return impl_->state; }
+const RefereeStats& Referee::stats() const { return impl_->stats; }
+
+Judgement Referee::judge(const ExactEvent& e, const ExactMotion& a_after, const ExactMotion& b_after) {
+  const auto start = Clock::now();
+  Impl& m = *impl_;
+  const ExactState& s = m.state;
+  if (e.a >= e.b || e.b >= s.bodies.size()) throw std::invalid_argument("Referee::judge: event bodies out of order or range");
+  Frame fr = m.frame();
+  Judgement j;
+
+  const std::optional<PairResult> own = m.own_contact(fr, e);
+  if (own) {
+    j.pair_time = ExactTime(s.now, own->tau);
+    j.pair_features = own->features;
+    j.features_match = std::find(own->features.begin(), own->features.end(),
+                                 FeaturePair{e.contact, e.feature_a, e.feature_b}) != own->features.end();
+    j.ulps = ulps_from(e.time, *j.pair_time, s.format);
+    j.relative_error = relative_error(e.time, *j.pair_time);
+  }
+  const Dyadic tau_hi = m.window_end(e, j.pair_time);
+  std::vector<Found> found;
+  if (own && compare(*own->tau, tau_hi) <= 0) found.push_back({{e.a, e.b}, *own});
+  const NextEvent earliest = m.search(fr, tau_hi, {e.a, e.b}, std::move(found));
+  j.earliest_time = earliest.time;
+  j.earliest = earliest.pairs;
+  j.verdict = decide(j.pair_time, earliest, e.time, s.format, m.options.agree_ulps);
+
+  j.conservation = measure_conservation(s.bodies[e.a], s.bodies[e.b], e, a_after, b_after);
+  const GapMeasure g = measure_gap(fr, m.features, e.a, e.b, {e.contact, e.feature_a, e.feature_b}, e.time - s.now);
+  j.gap = g.gap;
+  j.contact_distance = g.contact_distance;
+
+  m.advance(e, a_after, b_after);
+  ++m.stats.events;
+  m.stats.seconds += std::chrono::duration<double>(Clock::now() - start).count();
+  return j;
+}
+
+NextEvent Referee::next_event() {
+  const auto start = Clock::now();
+  Frame fr = impl_->frame();
+  const NextEvent next = impl_->search(fr, impl_->time_to_horizon(), {kNoBody, kNoBody}, {});
+  impl_->stats.seconds += std::chrono::duration<double>(Clock::now() - start).count();
+  return next;
+}
+
+EndJudgement Referee::judge_end() {
+  EndJudgement end;
+  end.next = next_event();
+  end.miss = end.next.time.has_value();
+  return end;
+}
+
+NextEvent next_event(const ExactState& state, const RefereeOptions& options) {
+  Referee r(state, options);
+  return r.next_event();
+}
+
+std::string_view verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::Agree: return "agree";
+    case Verdict::Tie: return "tie";
+    case Verdict::TimeError: return "time_error";
+    case Verdict::Misorder: return "misorder";
+    case Verdict::Miss: return "miss";
+    case Verdict::Phantom: return "phantom";
+  }
+  return "?";
+}
+
+}  // namespace pge::oracle

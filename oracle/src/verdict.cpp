@@ -1,0 +1,48 @@
+#include "judging.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace pge::oracle::detail {
+namespace {
+
+// Large enough for any real time error, small enough to be exact in a long long.
+constexpr long kUlpsClamp = 1L << 62;
+
+Dyadic representable(const Dyadic& t, const TimeFormat& f) { return round_to_format(t, f); }
+
+long long abs_ll(long long v) { return v < 0 ? -v : v; }
+
+}  // namespace
+
+long long ulps_from(const Dyadic& engine, const ExactTime& exact, const TimeFormat& f) {
+  const mpz_class d = format_ordinal(representable(engine, f), f) - format_ordinal(exact.round_to(f), f);
+  if (d > kUlpsClamp) return kUlpsClamp;
+  if (d < -kUlpsClamp) return -kUlpsClamp;
+  return d.get_si();
+}
+
+double relative_error(const Dyadic& engine, const ExactTime& exact) {
+  // The exact time to 80 bits is far finer than the double this figure is reported in.
+  constexpr long kBits = 80;
+  if (exact.compare(Dyadic()) == 0) return engine.is_zero() ? 0.0 : std::numeric_limits<double>::infinity();
+  const auto [lo, hi] = exact.bracket(kBits);
+  const mpq_class mid = (lo + hi) / 2;
+  if (mid == 0) return std::numeric_limits<double>::infinity();  // a time below 2^-80 s
+  const mpq_class rel = abs(mpq_class(engine.to_mpq() - mid) / mid);
+  return rel.get_d();
+}
+
+Verdict decide(const std::optional<ExactTime>& own, const NextEvent& earliest, const Dyadic& engine_time,
+               const TimeFormat& f, long agree_ulps) {
+  const auto within = [&](const ExactTime& t) { return abs_ll(ulps_from(engine_time, t, f)) <= agree_ulps; };
+  if (own && earliest.time && own->compare(*earliest.time) == 0) {
+    if (!within(*own)) return Verdict::TimeError;
+    return earliest.pairs.size() > 1 ? Verdict::Tie : Verdict::Agree;
+  }
+  if (earliest.time && earliest.time->compare(engine_time) < 0 && !within(*earliest.time)) return Verdict::Miss;
+  if (own && within(*own)) return Verdict::Misorder;
+  return Verdict::Phantom;
+}
+
+}  // namespace pge::oracle::detail

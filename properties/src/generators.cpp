@@ -1,0 +1,311 @@
+// Scene generators. Each motif is built at unit scale from a few random parameters, scaled by
+// an exact power of two, and placed along x at a dyadic offset. Coordinates are quantised to
+// multiples of 2^-20 of the motif scale, so that the placement offsets add exactly and the
+// degenerate relations (touching, grazing, mirrored symmetry) survive in binary floating point.
+// The y coordinates are never shifted, which keeps a one-ulp near-graze intact.
+#include "pge/generators.hpp"
+
+#include "pge/scene_io.hpp"
+#include "pge/validate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ostream>
+#include <string>
+
+namespace pge {
+namespace {
+
+// Unit-scale motif coordinates are multiples of 2^-kQuantumBits and smaller than 2^kExtentBits.
+constexpr int kQuantumBits = 20;
+constexpr double kExtent = 16;      // every motif fits in [-16, 16] x [-16, 16] at unit scale
+constexpr double kGap = 4;          // space between motifs, at the larger motif's scale
+
+double quantize(double x, int bits = kQuantumBits) { return std::ldexp(std::nearbyint(std::ldexp(x, bits)), -bits); }
+
+// rapidcheck scales integer ranges with its size parameter (small early cases); choices and
+// parameters here use the whole range at every size, so that every kind is generated from the
+// start. The number of motifs still grows with the size.
+constexpr int kFullSize = 100;
+template <class T> rc::Gen<T> uniform_in(T lo, T hi) { return rc::gen::resize(kFullSize, rc::gen::inRange<T>(lo, hi)); }
+
+// A parameter in [-1, 1] (or [0, 1]) with `bits` bits after the point; shrinks towards 0.
+rc::Gen<double> gen_signed(int bits) {
+  const int n = 1 << bits;
+  return rc::gen::map(uniform_in(0, 2 * n + 1), [bits](int k) {
+    const int v = (k % 2 == 1) ? -(k + 1) / 2 : k / 2;  // 0, -1, 1, -2, 2, ...
+    return std::ldexp(static_cast<double>(v), -bits);
+  });
+}
+rc::Gen<double> gen_unit(int bits) {
+  return rc::gen::map(uniform_in(0, (1 << bits) + 1), [bits](int k) { return std::ldexp(double(k), -bits); });
+}
+
+struct MotifSpec {
+  Motif kind = Motif::Free;
+  int scale_exp = 0;
+  bool polygon = false;
+  bool fixed_target = false;
+  bool diagonal = false;     // use the 3-4-5 direction instead of an axis
+  int count = 1;             // cradle length
+  int sign = 1;              // near-graze: +1 miss by an ulp, -1 hit by an ulp
+  double a = 0, b = 0, c = 0, d = 0;  // shape and motion parameters in [-1, 1]
+  int mass_exp = 0;          // masses 2^k
+  double restitution = 1;
+  double accel = 0;          // per-body acceleration magnitude parameter (0: none)
+};
+
+BodyDesc circle_body(double r, Vec2d p, Vec2d v, double mass) {
+  BodyDesc b;
+  b.shape = ShapeKind::Circle;
+  b.radius = r;
+  b.position = p;
+  b.velocity = v;
+  b.mass = mass;
+  return b;
+}
+
+BodyDesc box_body(double hx, double hy, Vec2d p, Vec2d v, double mass) {
+  BodyDesc b;
+  b.shape = ShapeKind::Polygon;
+  b.vertices = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
+  b.position = p;
+  b.velocity = v;
+  b.mass = mass;
+  return b;
+}
+
+BodyDesc triangle_body(double h, Vec2d p, Vec2d v, double mass) {
+  BodyDesc b;
+  b.shape = ShapeKind::Polygon;
+  b.vertices = {{-h, -h}, {h, -h}, {0, h}};
+  b.position = p;
+  b.velocity = v;
+  b.mass = mass;
+  return b;
+}
+
+void make_fixed(BodyDesc& b) {
+  b.fixed = true;
+  b.velocity = {};
+  b.acceleration = {};
+}
+
+// The bodies of a motif at unit scale, centred near the origin.
+std::vector<BodyDesc> realize(const MotifSpec& m) {
+  std::vector<BodyDesc> out;
+  const double mass = std::ldexp(1.0, m.mass_exp);
+  const double r1 = quantize(0.5 + 0.25 * m.a, 8);
+  const double r2 = quantize(0.5 + 0.25 * m.b, 8);
+  const double speed = quantize(0.25 + 0.75 * std::abs(m.c));
+  switch (m.kind) {
+    case Motif::Free:
+    case Motif::Count: {
+      const Vec2d v{quantize(m.c), quantize(m.d)};
+      if (m.polygon)
+        out.push_back(m.a < 0 ? triangle_body(r1, {0, 0}, v, mass) : box_body(r1, r2, {0, 0}, v, mass));
+      else
+        out.push_back(circle_body(r1, {0, 0}, v, mass));
+      break;
+    }
+    case Motif::TouchingPair: {
+      // Centres exactly r1 + r2 apart: along x, or along (3, 4) with r1 + r2 a multiple of 5.
+      const double k = m.diagonal ? quantize((r1 + r2) / 5, 8) : 0;
+      const double rb = m.diagonal ? 5 * k - r1 : r2;
+      const Vec2d offset = m.diagonal ? Vec2d{3 * k, 4 * k} : Vec2d{r1 + rb, 0};
+      out.push_back(circle_body(r1, {0, 0}, {quantize(m.c), quantize(m.d)}, mass));
+      out.push_back(circle_body(rb, offset, {quantize(-m.d), quantize(m.c)}, 1));
+      break;
+    }
+    case Motif::Graze:
+    case Motif::NearGraze: {
+      // The mover's path y = R passes the target at centre distance exactly R = r1 + r2: the
+      // contact function (x(t)^2 + R^2) - R^2 = x(t)^2 has a double root. NearGraze moves the
+      // path one ulp out (+1: a miss) or in (-1: a hit of depth one ulp).
+      const double big_r = r1 + r2;
+      double y = big_r;
+      if (m.kind == Motif::NearGraze) y = std::nextafter(big_r, m.sign > 0 ? 1e300 : 0.0);
+      BodyDesc target = circle_body(r1, {0, 0}, {}, 1);
+      if (m.fixed_target) make_fixed(target);
+      out.push_back(target);
+      out.push_back(circle_body(r2, {-(2 + big_r + std::abs(m.d)), y}, {speed, 0}, mass));
+      break;
+    }
+    case Motif::Simultaneous: {
+      // Two equal circles mirrored in x about the middle one reach it at the same instant.
+      const double big_r = r1 + r2;
+      const double k = quantize((big_r + 1 + std::abs(m.d)) / 5, 8);
+      const Vec2d p = m.diagonal ? Vec2d{3 * k, 4 * k} : Vec2d{5 * k, 0};
+      const Vec2d v = m.diagonal ? Vec2d{-3 * speed / 8, -4 * speed / 8} : Vec2d{-speed, 0};
+      BodyDesc middle = circle_body(r1, {0, 0}, {}, 1);
+      if (m.fixed_target) make_fixed(middle);
+      out.push_back(middle);
+      out.push_back(circle_body(r2, p, v, mass));
+      out.push_back(circle_body(r2, {-p.x, p.y}, {-v.x, v.y}, mass));
+      break;
+    }
+    case Motif::Cradle: {
+      const int n = std::clamp(m.count, 2, 5);
+      for (int i = 0; i < n; ++i) out.push_back(circle_body(r1, {2 * r1 * i, 0}, {}, 1));
+      out.push_back(circle_body(r1, {-2 * r1 - 1 - std::abs(m.d), 0}, {speed, 0}, mass));
+      break;
+    }
+    case Motif::WallHit: {
+      BodyDesc wall;
+      wall.shape = ShapeKind::Segment;
+      wall.a = {-2, 0};
+      wall.b = {2, 0};
+      wall.fixed = true;
+      out.push_back(wall);
+      if (m.diagonal) {
+        // Aimed exactly at endpoint b = (2, 0) along (-3, -4): head-on with the vertex.
+        const double k = quantize(r1 / 5 + 0.25 + 0.25 * std::abs(m.d), 8);
+        out.push_back(circle_body(r1, {2 + 3 * k + 3 * r1 / 5, 4 * k + 4 * r1 / 5}, {-3 * speed / 8, -4 * speed / 8}, mass));
+      } else {
+        out.push_back(circle_body(r1, {quantize(1.5 * m.a), r1 + 1 + std::abs(m.d)}, {quantize(m.b), -speed}, mass));
+      }
+      break;
+    }
+    case Motif::CornerHit: {
+      // Box A's corner (h, h) and B's lower-left corner (h + g, h + g) meet when B has moved g
+      // along (-1, -1): corner on corner, exactly.
+      const double h = r1, h2 = r2, g = quantize(0.5 + 0.5 * std::abs(m.d), 8);
+      BodyDesc a = m.a < 0 ? triangle_body(h, {0, 0}, {}, 1) : box_body(h, h, {0, 0}, {}, 1);
+      if (m.fixed_target) make_fixed(a);
+      out.push_back(a);
+      out.push_back(box_body(h2, h2, {h + g + h2, h + g + h2}, {-speed, -speed}, mass));
+      break;
+    }
+  }
+  for (BodyDesc& b : out) {
+    if (b.fixed) continue;
+    b.restitution = m.restitution < 1 ? m.restitution : -1;
+    if (m.accel != 0) b.acceleration = {quantize(m.accel * 0.5), quantize(-std::abs(m.accel))};
+  }
+  return out;
+}
+
+// Scales a body by 2^k (exact) and moves it by dx along x (exact for quantised coordinates).
+void place(BodyDesc& b, int k, double dx) {
+  auto s = [k](Vec2d v) { return Vec2d{std::ldexp(v.x, k), std::ldexp(v.y, k)}; };
+  b.radius = std::ldexp(b.radius, k);
+  b.a = s(b.a);
+  b.b = s(b.b);
+  for (Vec2d& v : b.vertices) v = s(v);
+  b.position = s(b.position);
+  b.position.x += dx;
+  b.velocity = s(b.velocity);
+  b.acceleration = s(b.acceleration);
+}
+
+rc::Gen<Motif> gen_motif_kind(const GenOptions& o) {
+  std::vector<Motif> allowed;
+  for (int k = 0; k < static_cast<int>(Motif::Count); ++k) {
+    const auto m = static_cast<Motif>(k);
+    if ((o.motif_mask & motif_bit(m)) == 0) continue;
+    if (m == Motif::CornerHit && !o.polygons) continue;
+    allowed.push_back(m);
+  }
+  if (allowed.empty()) allowed.push_back(Motif::Free);
+  return rc::gen::map(uniform_in<std::size_t>(0, allowed.size()), [allowed](std::size_t k) { return allowed[k]; });
+}
+
+rc::Gen<MotifSpec> gen_motif(const GenOptions& o, bool elastic_only, bool with_accel) {
+  return rc::gen::exec([=]() {
+    MotifSpec m;
+    m.kind = *gen_motif_kind(o);
+    m.scale_exp = *uniform_in(0, o.max_scale_exp - o.min_scale_exp + 1) + o.min_scale_exp;
+    if (m.scale_exp != 0 && *uniform_in(0, 2) == 0) m.scale_exp = 0;  // half the motifs at unit scale
+    m.polygon = o.polygons && *uniform_in(0, 3) == 0;
+    m.fixed_target = *uniform_in(0, 2) == 1;
+    m.diagonal = *uniform_in(0, 2) == 1;
+    m.count = *uniform_in(2, 6);
+    m.sign = *uniform_in(0, 2) == 0 ? 1 : -1;
+    m.a = *gen_signed(10);
+    m.b = *gen_signed(10);
+    m.c = *gen_signed(10);
+    m.d = *gen_signed(10);
+    m.mass_exp = *uniform_in(0, 7) - 3;
+    if (!elastic_only && *uniform_in(0, 4) == 0) m.restitution = *rc::gen::element(0.0, 0.5, 0.9);
+    if (with_accel && *uniform_in(0, 3) == 0) m.accel = *gen_unit(6);
+    return m;
+  });
+}
+
+}  // namespace
+
+std::string_view motif_name(Motif m) {
+  switch (m) {
+    case Motif::Free: return "free";
+    case Motif::TouchingPair: return "touching-pair";
+    case Motif::Graze: return "graze";
+    case Motif::NearGraze: return "near-graze";
+    case Motif::Simultaneous: return "simultaneous";
+    case Motif::Cradle: return "cradle";
+    case Motif::WallHit: return "wall-hit";
+    case Motif::CornerHit: return "corner-hit";
+    case Motif::Count: break;
+  }
+  return "?";
+}
+
+void print_generated(const GeneratedScene& g, std::ostream& os) {
+  os << "motifs:";
+  for (Motif m : g.motifs) os << ' ' << motif_name(m);
+  os << "\nscene JSON:\n" << write_scene(g.scene);
+}
+
+rc::Gen<GeneratedScene> gen_scene(const GenOptions& o) {
+  return rc::gen::exec([o]() {
+    const bool gravity = o.gravity && *uniform_in(0, 3) == 0;
+    // Restitution < 1 under gravity can come to rest on the floor, a contact state the engine
+    // reports as a storm until resting contact exists; keep gravity scenes elastic.
+    const bool elastic_only = gravity || !o.inelastic;
+    const bool accel = o.accelerations && !gravity;
+    const auto specs = *rc::gen::resize(
+        o.max_motifs * 10, rc::gen::nonEmpty(rc::gen::container<std::vector<MotifSpec>>(gen_motif(o, elastic_only, accel))));
+
+    GeneratedScene g;
+    g.gravity = gravity;
+    Scene& s = g.scene;
+    s.name = "generated";
+    s.run.until = o.until;
+    s.run.max_events = o.max_events;
+    if (gravity) s.world.gravity = {0, -1};
+    double x = 0;
+    double lowest = 0;
+    int min_exp = 1000, max_exp = -1000;
+    const std::size_t n = std::min<std::size_t>(specs.size(), static_cast<std::size_t>(o.max_motifs));
+    for (std::size_t i = 0; i < n; ++i) {
+      const MotifSpec& m = specs[i];
+      g.motifs.push_back(m.kind);
+      min_exp = std::min(min_exp, m.scale_exp);
+      max_exp = std::max(max_exp, m.scale_exp);
+      const double half = std::ldexp(kExtent, m.scale_exp);
+      if (i > 0) x += half + std::ldexp(kGap, m.scale_exp);
+      std::vector<BodyDesc> bodies = realize(m);
+      for (std::size_t k = 0; k < bodies.size(); ++k) {
+        BodyDesc& b = bodies[k];
+        b.id = "m" + std::to_string(i) + "-" + std::to_string(k);
+        place(b, m.scale_exp, x);
+      }
+      s.bodies.insert(s.bodies.end(), bodies.begin(), bodies.end());
+      x += half;
+      lowest = std::min(lowest, -half);
+    }
+    g.mixed_scale = max_exp != min_exp;
+    if (gravity) {
+      BodyDesc floor;
+      floor.id = "floor";
+      floor.shape = ShapeKind::Segment;
+      floor.fixed = true;
+      const double margin = std::ldexp(kExtent, max_exp);
+      floor.a = {-2 * margin, 2 * lowest};
+      floor.b = {x + 2 * margin, 2 * lowest};
+      s.bodies.push_back(floor);
+    }
+    return g;
+  });
+}
+
+}  // namespace pge

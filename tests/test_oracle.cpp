@@ -1,0 +1,272 @@
+// The oracle on cases whose answers are known exactly. Every expected value is derived in the
+// comment above it, or computed independently with GMP integers; none comes from a run of the
+// oracle.
+#include "oracle_states.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace pge::oracle {
+namespace {
+
+using namespace testing;
+
+mpz_class pow10(int k) {
+  mpz_class r = 1;
+  for (int i = 0; i < k; ++i) r *= 10;
+  return r;
+}
+
+// ---------------------------------------------------------------- exact numbers and formats
+
+TEST(OracleNumbers, DoubleFloatLongDoubleQuadConvertExactly) {
+  // IEEE 754: 0.1 rounds to 3602879701896397 * 2^-55 in binary64 (an odd significand).
+  EXPECT_EQ(Dyadic::from(0.1), Dyadic(mpz_class(3602879701896397L), -55));
+  // binary32: 0.1f = 0x3DCCCCCD = 13421773 * 2^-27.
+  EXPECT_EQ(Dyadic::from(0.1f), Dyadic(mpz_class(13421773L), -27));
+  // x87 extended: 0.1L = 0xCCCCCCCCCCCCCCCD * 2^-67 (64-bit significand, rounded up).
+  EXPECT_EQ(Dyadic::from(0.1L), Dyadic(mpz_class("CCCCCCCCCCCCCCCD", 16), -67));
+  // binary128 holds 1 + 2^-112 exactly; it is (2^112 + 1) * 2^-112.
+  using Quad = boost::multiprecision::cpp_bin_float_quad;
+  const Quad q = 1 + ldexp(Quad(1), -112);
+  mpz_class m = 1;
+  m <<= 112;
+  EXPECT_EQ(Dyadic::from(q), Dyadic(m + 1, -112));
+  EXPECT_EQ(Dyadic::from(-0.0), Dyadic());
+  EXPECT_THROW(Dyadic::from(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+}
+
+TEST(OracleNumbers, ArithmeticIsExact) {
+  // Sums, differences and products of the doubles 0.1 and 0.2 against GMP's rational arithmetic
+  // on the same two values (an independent exact computation).
+  const Dyadic a = Dyadic::from(0.1), b = Dyadic::from(0.2);
+  EXPECT_EQ((a + b).to_mpq(), a.to_mpq() + b.to_mpq());
+  EXPECT_EQ((a * b).to_mpq(), a.to_mpq() * b.to_mpq());
+  EXPECT_EQ((a - b).to_mpq(), a.to_mpq() - b.to_mpq());
+  EXPECT_LT(compare(a, b), 0);
+  EXPECT_EQ(Dyadic(12), Dyadic(mpz_class(3), 2));  // canonical form: 12 = 3 * 2^2
+}
+
+TEST(OracleNumbers, FormatOrdinalsAndRounding) {
+  const TimeFormat d = TimeFormat::of<double>();
+  // The smallest subnormal is the first positive double; 2^-1022 (the smallest normal) is the
+  // 2^52-th (2^52 - 1 subnormals precede it); 1.0 is 2^52 * 1023 (1022 binades above it).
+  EXPECT_EQ(format_ordinal(Dyadic::from(std::numeric_limits<double>::denorm_min()), d), 1);
+  EXPECT_EQ(format_ordinal(Dyadic::from(std::numeric_limits<double>::min()), d), mpz_class(1L << 52));
+  EXPECT_EQ(format_ordinal(Dyadic(1), d), mpz_class(1L << 52) * 1023);
+  // Neighbours of 1: 1 + 2^-52 above, 1 - 2^-53 below.
+  EXPECT_EQ(format_step(Dyadic(1), 1, d).to_double(), std::nextafter(1.0, 2.0));
+  EXPECT_EQ(format_step(Dyadic(1), -1, d).to_double(), std::nextafter(1.0, 0.0));
+  // 1 + 2^-53 is halfway between 1 and 1 + 2^-52: ties to even gives 1. 1 + 3 * 2^-54 is nearer
+  // to 1 + 2^-52.
+  EXPECT_EQ(round_to_format(Dyadic(1) + Dyadic(mpz_class(1), -53), d), Dyadic(1));
+  EXPECT_EQ(round_to_format(Dyadic(1) + Dyadic(mpz_class(3), -54), d), Dyadic::from(std::nextafter(1.0, 2.0)));
+  EXPECT_EQ(format_value(format_ordinal(Dyadic::from(0.1), d), d), Dyadic::from(0.1));
+}
+
+// ---------------------------------------------------------------- known contact times
+
+// Circles of radius 1 at x = 0 and x = 3 closing at speed 2: the gap 1 closes at t = 1/2
+// ((3 - 2t)^2 = 4 has roots 1/2 and 5/2; the first is the downward crossing).
+ExactState half_state() {
+  return state_of({moving_circle(1, {0, 0}, {1, 0}), moving_circle(1, {3, 0}, {-1, 0})});
+}
+
+TEST(OracleKnown, TwoCirclesMeetAtExactlyOneHalf) {
+  const NextEvent next = next_event(half_state());
+  ASSERT_TRUE(next.time);
+  EXPECT_EQ(next.time->compare(Dyadic(mpz_class(1), -1)), 0);
+  EXPECT_EQ(next.time->decimal(5), "0.50000");
+  EXPECT_EQ(next.time->to_double(), 0.5);
+  ASSERT_EQ(next.pairs.size(), 1u);
+  EXPECT_EQ(next.pairs[0].a, 0u);
+  EXPECT_EQ(next.pairs[0].b, 1u);
+  EXPECT_TRUE(has_feature(next.pairs[0], ContactKind::CircleCircle, 0, 0));
+  EXPECT_FALSE(next.pairs[0].overlap_rule);
+}
+
+// A ball (radius 1/2) released at rest at (1/2, 3) under gravity (0, -4) onto a fixed peg of
+// radius 1/2 at the origin. Centre distance squared: 1/4 + (3 - 2 t^2)^2, a quartic in t; it
+// equals 1 when (3 - 2 t^2)^2 = 3/4, first at 3 - 2 t^2 = sqrt(3)/2, so
+//   t = sqrt(3/2 - sqrt(3)/4) = sqrt((6 - sqrt 3) / 4) ~ 1.0329.
+// floor(10^100 t) = isqrt(floor(10^200 (6 - sqrt 3) / 4)) (isqrt(floor X) = floor(sqrt X)), and
+// with S = isqrt(3 * 10^400) < 10^200 sqrt 3 < S + 1 and M = 6 * 10^200 - S, the inner floor is
+// floor((M - 1) / 4) (an integer cannot lie strictly inside ((M - 1)/4, M/4) unless M/4 is one,
+// and then the floor is M/4 - 1 all the same).
+TEST(OracleKnown, QuarticRootMatchesClosedFormTo100Digits) {
+  const ExactState s = state_of({fixed_circle(0.5, {0, 0}), moving_circle(0.5, {0.5, 3}, {0, 0}, 1, {0, -4})});
+  const NextEvent next = next_event(s);
+  ASSERT_TRUE(next.time);
+  mpz_class s3, n;
+  mpz_class three_e400 = 3 * pow10(400);
+  mpz_sqrt(s3.get_mpz_t(), three_e400.get_mpz_t());
+  const mpz_class m = 6 * pow10(200) - s3;
+  mpz_class inner;
+  mpz_class m1 = m - 1;
+  mpz_fdiv_q_ui(inner.get_mpz_t(), m1.get_mpz_t(), 4);
+  mpz_sqrt(n.get_mpz_t(), inner.get_mpz_t());
+  std::string digits = n.get_str();  // 101 digits: "10329..."
+  ASSERT_EQ(digits.size(), 101u);
+  EXPECT_EQ(next.time->decimal(100), digits.substr(0, 1) + "." + digits.substr(1));
+  // And the isolating interval, refined to 2^-340 < 10^-100, holds the closed form exactly:
+  // lo <= t iff lo <= 0 or (6 - 4 lo^2 >= 0 and 3 <= (6 - 4 lo^2)^2); likewise t <= hi.
+  const auto [lo, hi] = next.time->bracket(340);
+  EXPECT_LE(mpq_class(hi - lo), mpq_class(mpz_class(1), pow10(100)));
+  const mpq_class a = 6 - 4 * lo * lo, b = 6 - 4 * hi * hi;
+  EXPECT_TRUE(a >= 0 && 3 <= a * a);
+  EXPECT_TRUE(b < 0 || 3 >= b * b);
+}
+
+// A ball of radius 1 passing a fixed peg of radius 1: centre at (-5 + t, y0), so the squared
+// centre distance is (t - 5)^2 + y0^2, least at t = 5. Contact needs it to reach 4.
+ExactState pass_state(double y0) { return state_of({fixed_circle(1, {0, 0}), moving_circle(1, {-5, y0}, {1, 0})}); }
+
+TEST(OracleKnown, NearDoubleRootGrazeIsNoCollision) {
+  // y0 = 2 + 2^-40: at the closest approach the gap is y0 - 2 = 2^-40 > 0 exactly (computed
+  // here in rationals, independently of the oracle), and f = (t - 5)^2 + y0^2 - 4 > 0 always.
+  const double y0 = 2 + std::ldexp(1.0, -40);
+  const mpq_class gap = Dyadic::from(y0).to_mpq() - 2;
+  EXPECT_GT(gap, 0);
+  EXPECT_FALSE(next_event(pass_state(y0)).time);
+  // y0 = 2: an exact double root at t = 5, f touches 0 and comes back: a graze, no collision.
+  EXPECT_FALSE(next_event(pass_state(2)).time);
+  // y0 = 2 - 2^-40: two close roots 5 -+ sqrt(4 - y0^2); the collision is the first, just before 5.
+  const NextEvent hit = next_event(pass_state(2 - std::ldexp(1.0, -40)));
+  ASSERT_TRUE(hit.time);
+  EXPECT_LT(hit.time->compare(Dyadic(5)), 0);
+  EXPECT_GT(hit.time->compare(Dyadic::from(5 - std::ldexp(1.0, -18))), 0);
+}
+
+// A ball (radius 1/2) at rest at x = 2 accelerating at 1 towards a peg (radius 1/2) at the
+// origin: the centre distance 2 - t^2 / 2 reaches 1 at t = sqrt 2.
+TEST(OracleKnown, TimeRoundsToTheNearestRepresentable) {
+  const ExactState s = state_of({fixed_circle(0.5, {0, 0}), moving_circle(0.5, {2, 0}, {0, 0}, 1, {-1, 0})});
+  const NextEvent next = next_event(s);
+  ASSERT_TRUE(next.time);
+  // IEEE 754 sqrt is correctly rounded in every format: the nearest representable sqrt 2.
+  EXPECT_EQ(next.time->round_to(TimeFormat::of<double>()), Dyadic::from(std::sqrt(2.0)));
+  EXPECT_EQ(next.time->round_to(TimeFormat::of<float>()), Dyadic::from(std::sqrt(2.0f)));
+  EXPECT_EQ(next.time->round_to(TimeFormat::of<long double>()), Dyadic::from(std::sqrt(2.0L)));
+}
+
+// ---------------------------------------------------------------- verdicts on engine events
+
+Judgement judge_one(const ExactState& s, const ExactEvent& e) {
+  Referee r(s);
+  return r.judge(e, s.bodies[e.a].motion, s.bodies[e.b].motion);
+}
+
+TEST(OracleVerdict, ExactTimeAgreesAndLateTimeIsATimeError) {
+  const ExactState s = half_state();
+  const Judgement ok = judge_one(s, event_at(s, 0, 1, 0.5, ContactKind::CircleCircle));
+  EXPECT_EQ(ok.verdict, Verdict::Agree);
+  EXPECT_EQ(ok.ulps, 0);
+  EXPECT_EQ(ok.relative_error, 0);
+  EXPECT_TRUE(ok.features_match);
+  // 100 representable doubles after 1/2 (ulp 2^-53 there): 100 ulps late, relative 100 * 2^-52.
+  double late = 0.5;
+  for (int k = 0; k < 100; ++k) late = std::nextafter(late, 1.0);
+  const Judgement bad = judge_one(s, event_at(s, 0, 1, late, ContactKind::CircleCircle));
+  EXPECT_EQ(bad.verdict, Verdict::TimeError);
+  EXPECT_EQ(bad.ulps, 100);
+  EXPECT_DOUBLE_EQ(bad.relative_error, 100 * std::ldexp(1.0, -52));
+}
+
+// Two pairs far apart: A (x = 0, speed 1) reaches B (x = 3, at rest) at t = 1; D (speed 1) reaches
+// E, at rest 3 + `extra` away, at t = 1 + extra. F sits far off and is touched by nobody.
+ExactState two_pairs(double extra) {
+  return state_of({moving_circle(1, {0, 0}, {1, 0}), moving_circle(1, {3, 0}, {0, 0}),
+                   moving_circle(1, {0, 100}, {1, 0}), moving_circle(1, {3 + extra, 100}, {0, 0}),
+                   moving_circle(1, {50, 50}, {0, 0})});
+}
+
+TEST(OracleVerdict, SkippedCollisionIsAMiss) {
+  // The faked engine processes D-E at t = 4 (its exact time: extra = 3) and skips A-B at t = 1.
+  const ExactState s = two_pairs(3);
+  const Judgement j = judge_one(s, event_at(s, 2, 3, 4, ContactKind::CircleCircle));
+  EXPECT_EQ(j.verdict, Verdict::Miss);
+  ASSERT_TRUE(j.earliest_time);
+  EXPECT_EQ(j.earliest_time->compare(Dyadic(1)), 0);
+  ASSERT_EQ(j.earliest.size(), 1u);
+  EXPECT_EQ(j.earliest[0].a, 0u);
+  EXPECT_EQ(j.earliest[0].b, 1u);
+  EXPECT_EQ(j.ulps, 0);  // its own pair's time is right
+}
+
+TEST(OracleVerdict, EventBetweenBodiesThatNeverTouchIsAPhantom) {
+  // A moves along y = 0 and F sits at (50, 50): their distance never drops below 50. The faked
+  // event is at t = 1/2, before anything touches.
+  const ExactState s = two_pairs(3);
+  const Judgement j = judge_one(s, event_at(s, 0, 4, 0.5, ContactKind::CircleCircle));
+  EXPECT_EQ(j.verdict, Verdict::Phantom);
+  EXPECT_FALSE(j.pair_time);
+  EXPECT_GT(j.gap, 40);
+}
+
+TEST(OracleVerdict, NearSimultaneousPairsInTheOtherOrderAreAMisorder) {
+  // D-E touches 2^-51 (two ulps of 1; one ulp of E's position 3) after A-B; the engine takes
+  // D-E first, at its exact time.
+  const double extra = std::ldexp(1.0, -51);
+  const ExactState s = two_pairs(extra);
+  const Judgement j = judge_one(s, event_at(s, 2, 3, 1 + extra, ContactKind::CircleCircle));
+  EXPECT_EQ(j.verdict, Verdict::Misorder);
+  // 2^-30 apart is far beyond a few ulps: a miss.
+  const double far = std::ldexp(1.0, -30);
+  const ExactState s2 = two_pairs(far);
+  EXPECT_EQ(judge_one(s2, event_at(s2, 2, 3, 1 + far, ContactKind::CircleCircle)).verdict, Verdict::Miss);
+}
+
+TEST(OracleVerdict, SameExactTimeIsATie) {
+  // B (x = -3) and C (x = 3) close on A at the origin at speed 1 from both sides: both gaps of 1
+  // close at t = 1 exactly.
+  const ExactState s = state_of({moving_circle(1, {0, 0}, {0, 0}), moving_circle(1, {-3, 0}, {1, 0}),
+                                 moving_circle(1, {3, 0}, {-1, 0})});
+  const Judgement j = judge_one(s, event_at(s, 0, 1, 1, ContactKind::CircleCircle));
+  EXPECT_EQ(j.verdict, Verdict::Tie);
+  EXPECT_EQ(j.earliest.size(), 2u);
+}
+
+TEST(OracleVerdict, ConservationIsExact) {
+  // Equal masses, head on, elastic: the velocities swap; kinetic energy and momentum are
+  // unchanged exactly, and the positions do not move, so the potential (no field) is 0.
+  ExactState s = half_state();
+  ExactEvent e = event_at(s, 0, 1, 0.5, ContactKind::CircleCircle);
+  e.va_after = ev(-1, 0);
+  e.vb_after = ev(1, 0);
+  Referee r(s);
+  const ExactMotion a_after = motion({0.5, 0}, {-1, 0}, {}, 0.5), b_after = motion({2.5, 0}, {1, 0}, {}, 0.5);
+  const Judgement j = r.judge(e, a_after, b_after);
+  EXPECT_TRUE(j.conservation.both_moving);
+  EXPECT_TRUE(j.conservation.elastic);
+  EXPECT_TRUE(j.conservation.energy_change.is_zero());
+  EXPECT_TRUE(j.conservation.momentum_change.x.is_zero());
+  EXPECT_DOUBLE_EQ(j.conservation.kinetic_before, 1.0);
+  // A second event where b leaves at 1 + 2^-40 instead of 1: energy grows by
+  // ((1 + 2^-40)^2 - 1) / 2 = 2^-40 + 2^-81 and momentum by 2^-40, exactly.
+  ExactState s2 = half_state();
+  ExactEvent e2 = e;
+  e2.vb_after = ev(1 + std::ldexp(1.0, -40), 0);
+  Referee r2(s2);
+  const Judgement j2 = r2.judge(e2, a_after, motion({2.5, 0}, {1 + std::ldexp(1.0, -40), 0}, {}, 0.5));
+  EXPECT_EQ(j2.conservation.energy_change, Dyadic(mpz_class(1), -40) + Dyadic(mpz_class(1), -81));
+  EXPECT_EQ(j2.conservation.momentum_change.x, Dyadic(mpz_class(1), -40));
+}
+
+TEST(OracleVerdict, PotentialEnergyUsesExactPositions) {
+  // A body under gravity (0, -2) at height 1, at rest at t0 = 0; at t = 1 it is at height 0
+  // exactly (1 - t^2) with speed 2. If the engine rebased it to height 2^-30 instead, the
+  // potential after, m g h = 2 * 2^-30, is the whole energy change (velocities unchanged).
+  ExactState s = state_of({moving_circle(0.25, {0, 1}, {0, 0}, 1, {0, -2}), moving_circle(0.25, {10, 0}, {0, 0})});
+  ExactEvent e = event_at(s, 0, 1, 1, ContactKind::CircleCircle);
+  e.va_before = e.va_after = ev(0, -2);
+  Referee r(s);
+  const Judgement j = r.judge(e, motion({0, std::ldexp(1.0, -30)}, {0, -2}, {0, -2}, 1), s.bodies[1].motion);
+  EXPECT_EQ(j.conservation.energy_change, Dyadic(mpz_class(1), -29));
+}
+
+}  // namespace
+}  // namespace pge::oracle

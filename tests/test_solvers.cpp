@@ -1,0 +1,222 @@
+// The three root solvers on hand-derived cases, for every scalar: the semantics of a downward
+// root (roots.hpp), the visitor's order, the certified solver's exact fallback, and the world
+// running with each solver. Every expected value is derived in the comment beside it.
+#include "pge/roots.hpp"
+#include "pge/scalar.hpp"
+#include "pge/world.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace pge {
+namespace {
+
+template <class T> Poly<T> poly(std::vector<double> c) {
+  Poly<T> p;
+  p.degree = static_cast<int>(c.size()) - 1;
+  for (std::size_t k = 0; k < c.size(); ++k) p.c[k] = T(c[k]);
+  return p;
+}
+
+template <class T>
+std::vector<std::pair<T, bool>> all_roots(SolverKind s, const Poly<T>& p, double lo, double hi,
+                                          StartRule rule = StartRule::OverlapCollides) {
+  std::vector<std::pair<T, bool>> out;
+  visit_downward_roots(s, p, T(lo), T(hi), rule, [&](const T& t, bool overlap) {
+    out.emplace_back(t, overlap);
+    return false;
+  });
+  return out;
+}
+
+template <class T> class Solvers : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double, long double, Quad>;
+TYPED_TEST_SUITE(Solvers, Scalars);
+
+constexpr SolverKind kAll[] = {SolverKind::Fast, SolverKind::Robust, SolverKind::Certified};
+constexpr SolverKind kSound[] = {SolverKind::Robust, SolverKind::Certified};
+
+// (t-1)(t-2) = 2 - 3t + t^2: positive at 0, down through 1 (p'(1) = -1), up through 2.
+TYPED_TEST(Solvers, SimpleCrossing) {
+  using T = TypeParam;
+  for (SolverKind s : kAll) {
+    const RootOutcome<T> r = earliest_downward_root(s, poly<T>({2, -3, 1}), T(0), T(5));
+    ASSERT_EQ(r.status, RootStatus::Root) << solver_name(s);
+    EXPECT_EQ(r.t, T(1)) << solver_name(s);
+    EXPECT_FALSE(r.at_start_overlap);
+  }
+}
+
+// 1 - t^4 (declared quartic, middle coefficients zero): the only positive root is 1.
+TYPED_TEST(Solvers, ZeroMiddleCoefficients) {
+  using T = TypeParam;
+  for (SolverKind s : kAll) EXPECT_EQ(earliest_downward_root(s, poly<T>({1, 0, 0, 0, -1}), T(0), T(2)).t, T(1)) << solver_name(s);
+}
+
+// (t-1)^2: touches zero at 1 and comes back: a graze, no root. (t-1)^2 (t-3)(t-4): the graze at 1
+// is skipped, the crossing at 3 (p goes from + to -) counts.
+TYPED_TEST(Solvers, GrazeIsNotARoot) {
+  using T = TypeParam;
+  for (SolverKind s : kSound) {
+    EXPECT_EQ(earliest_downward_root(s, poly<T>({1, -2, 1}), T(0), T(3)).status, RootStatus::None) << solver_name(s);
+    const RootOutcome<T> r = earliest_downward_root(s, poly<T>({12, -31, 27, -9, 1}), T(0), T(5));
+    ASSERT_EQ(r.status, RootStatus::Root) << solver_name(s);
+    EXPECT_EQ(r.t, T(3)) << solver_name(s);
+  }
+}
+
+// (t-1)(t-2) from 1.25: p(1.25) = -0.1875 < 0, p'(1.25) = -0.5: overlapping and approaching, so
+// lo itself with the overlap flag; a one-sided function (CrossingsOnly) has no root (the next
+// crossing, at 2, goes up). From 1.5 (p' = 0, p'' > 0): receding, no root.
+TYPED_TEST(Solvers, OverlapRule) {
+  using T = TypeParam;
+  for (SolverKind s : kAll) {
+    const RootOutcome<T> r = earliest_downward_root(s, poly<T>({2, -3, 1}), T(1.25), T(3));
+    ASSERT_EQ(r.status, RootStatus::Root) << solver_name(s);
+    EXPECT_EQ(r.t, T(1.25));
+    EXPECT_TRUE(r.at_start_overlap);
+    EXPECT_EQ(earliest_downward_root(s, poly<T>({2, -3, 1}), T(1.25), T(3), StartRule::CrossingsOnly).status,
+              RootStatus::None) << solver_name(s);
+  }
+  for (SolverKind s : kSound)
+    EXPECT_EQ(earliest_downward_root(s, poly<T>({2, -3, 1}), T(1.5), T(3)).status, RootStatus::None) << solver_name(s);
+}
+
+// -(t-1)(t-2)(t-3) = 6 - 11t + 6t^2 - t^3: p(0) = 6, down at 1, up at 2, down at 3. The visitor
+// sees 1 then 3; returning true at the first stops the walk.
+TYPED_TEST(Solvers, VisitsEveryDownwardRootInOrder) {
+  using T = TypeParam;
+  for (SolverKind s : kSound) {
+    const auto roots = all_roots<T>(s, poly<T>({6, -11, 6, -1}), 0, 4);
+    ASSERT_EQ(roots.size(), 2u) << solver_name(s);
+    EXPECT_EQ(roots[0].first, T(1));
+    EXPECT_EQ(roots[1].first, T(3));
+    int calls = 0;
+    EXPECT_TRUE(visit_downward_roots(s, poly<T>({6, -11, 6, -1}), T(0), T(4), StartRule::OverlapCollides, [&](const T&, bool) {
+      ++calls;
+      return true;
+    }));
+    EXPECT_EQ(calls, 1);
+  }
+}
+
+// Ends and degenerate input: a root exactly at hi counts (p arrives from above); lo == hi is a
+// root only by the start rule; lo > hi and constants have none.
+TYPED_TEST(Solvers, EndsAndDegenerateInput) {
+  using T = TypeParam;
+  for (SolverKind s : kSound) {
+    EXPECT_EQ(earliest_downward_root(s, poly<T>({2, -3, 1}), T(0), T(1)).t, T(1)) << solver_name(s);
+    const RootOutcome<T> at = earliest_downward_root(s, poly<T>({2, -3, 1}), T(1), T(1));
+    EXPECT_EQ(at.status, RootStatus::Root) << solver_name(s);  // p(1) = 0, p'(1) = -1
+    EXPECT_EQ(earliest_downward_root(s, poly<T>({2, -3, 1}), T(2), T(1)).status, RootStatus::None);
+    EXPECT_EQ(earliest_downward_root(s, poly<T>({-1, 0, 0}), T(0), T(1)).status, RootStatus::None);
+    EXPECT_EQ(earliest_downward_root(s, poly<T>({0, 0, 0, 0, 0}), T(0), T(1)).status, RootStatus::None);
+    // 0 * t^4 + t^2 - 3t + 2 declared as a quartic: leading zeros are trimmed.
+    EXPECT_EQ(earliest_downward_root(s, poly<T>({2, -3, 1, 0, 0}), T(0), T(5)).t, T(1)) << solver_name(s);
+  }
+}
+
+// t^2 - 2t + (1 + 2^-52): complex roots 1 +- 2^-26 i, a near touch: no root. t^2 - 2t + (1 - 2^-52):
+// real roots 1 -+ 2^-26 exactly; the earliest is 1 - 2^-26 (representable in every scalar but float,
+// where the coefficients round to (t-1)^2, a graze).
+TEST(SolversDouble, NearDoubleRoots) {
+  const double u = std::ldexp(1.0, -52);
+  for (SolverKind s : kSound) {
+    EXPECT_EQ(earliest_downward_root(s, poly<double>({1 + u, -2, 1}), 0.0, 2.0).status, RootStatus::None) << solver_name(s);
+    const RootOutcome<double> r = earliest_downward_root(s, poly<double>({1 - u, -2, 1}), 0.0, 2.0);
+    ASSERT_EQ(r.status, RootStatus::Root) << solver_name(s);
+    EXPECT_EQ(r.t, 1 - std::ldexp(1.0, -26)) << solver_name(s);
+  }
+}
+
+// Certified on t^2 - 2t + (1 - 2^-53): roots 1 -+ 2^-26.5, which no double holds; the nearest
+// double to 1 - 2^-26.5 = 1 - 1.0536712127723509e-08 is found by comparing with the midpoints
+// around the long double value (64-bit significand: 11 bits to spare).
+TEST(SolversDouble, CertifiedRoundsCorrectly) {
+  const double c0 = 1 - std::ldexp(1.0, -53);
+  const long double exact = 1.0L - std::sqrt(std::ldexp(1.0L, -53));
+  const double nearest = static_cast<double>(exact);  // round to nearest, 11 guard bits
+  const RootOutcome<double> r = earliest_downward_root(SolverKind::Certified, poly<double>({c0, -2, 1}), 0.0, 2.0);
+  ASSERT_EQ(r.status, RootStatus::Root);
+  EXPECT_EQ(r.t, nearest);
+}
+
+// The exact fallback on its own: Sturm isolation of the square-free part and exact rounding.
+// (t-1)^2 (t-3)(t-4): graze at 1 skipped, 3 counted. 3 t^2 - 1 (root 1/sqrt(3)) on [-1, 1]:
+// p(-1) = 2 > 0, down through -1/sqrt(3) (nearest double: -0.57735026918962573), up through
+// 1/sqrt(3).
+TEST(SolversExact, SturmAndRounding) {
+  using detail::exact::ExactSolver;
+  std::vector<double> seen;
+  auto collect = [&](const double& t, bool) {
+    seen.push_back(t);
+    return false;
+  };
+  ExactSolver<double>(poly<double>({12, -31, 27, -9, 1}), 0.0, 5.0).visit(StartRule::OverlapCollides, 0, collect);
+  EXPECT_EQ(seen, std::vector<double>({3.0}));
+  seen.clear();
+  ExactSolver<double>(poly<double>({-1, 0, 3}), -1.0, 1.0).visit(StartRule::OverlapCollides, 0, collect);
+  EXPECT_EQ(seen, std::vector<double>({-0.57735026918962573}));
+  // Skipping: -(t-1)(t-2)(t-3) has downward roots 1 and 3; skip one, see 3.
+  seen.clear();
+  ExactSolver<double>(poly<double>({6, -11, 6, -1}), 0.0, 4.0).visit(StartRule::OverlapCollides, 1, collect);
+  EXPECT_EQ(seen, std::vector<double>({3.0}));
+}
+
+// Dyadic conversion is exact and rounding is to nearest, ties to even: 1 + 2^-53 lies halfway
+// between 1 and 1 + 2^-52 and rounds to 1 (even); 1 + 3 2^-53 lies halfway between 1 + 2^-52 and
+// 1 + 2^-51 and rounds to 1 + 2^-51.
+TEST(SolversExact, DyadicRounding) {
+  using namespace detail::exact;
+  EXPECT_EQ(round_to_scalar<double>(to_dyadic(1.0)), 1.0);
+  Dyadic tie_low;  // 1 + 2^-53 = (2^53 + 1) 2^-53
+  tie_low.m = (Int(1) << 53) + 1;
+  tie_low.e = -53;
+  EXPECT_EQ(round_to_scalar<double>(tie_low), 1.0);
+  Dyadic tie_high;  // 1 + 3 2^-53
+  tie_high.m = (Int(1) << 53) + 3;
+  tie_high.e = -53;
+  EXPECT_EQ(round_to_scalar<double>(tie_high), 1.0 + std::ldexp(1.0, -51));
+  EXPECT_EQ(compare(midpoint(to_dyadic(1.0), to_dyadic(1.0 + std::ldexp(1.0, -52))), tie_low), 0);
+  const long double x = 0.1L;
+  EXPECT_EQ(round_to_scalar<long double>(to_dyadic(x)), x);
+  EXPECT_EQ(round_to_scalar<float>(to_dyadic(0.1)), 0.1f);  // 0.1 (double) rounds to 0.1f
+  const Quad q = Quad(1) / Quad(3);
+  EXPECT_EQ(round_to_scalar<Quad>(to_dyadic(q)), q);
+}
+
+// The world runs with every solver: two unit discs 10 apart closing at 2 collide when the gap of
+// 8 is closed, at t = 4 exactly, whichever solver predicts it.
+TYPED_TEST(Solvers, WorldRunsWithEverySolver) {
+  using T = TypeParam;
+  Scene scene;
+  scene.name = "head-on";
+  for (int i = 0; i < 2; ++i) {
+    BodyDesc b;
+    b.id = i == 0 ? "a" : "b";
+    b.shape = ShapeKind::Circle;
+    b.radius = 1;
+    b.position = {i == 0 ? 0.0 : 10.0, 0};
+    b.velocity = {i == 0 ? 1.0 : -1.0, 0};
+    b.mass = 1;
+    scene.bodies.push_back(b);
+  }
+  scene.run.until = 5;
+  for (SolverKind s : kAll) {
+    WorldOptions options;
+    options.solver = s;
+    World<T> world(scene, options);
+    EXPECT_EQ(world.solver(), s);
+    std::vector<T> times;
+    world.on_collision([&](const CollisionInfo<T>& c) { times.push_back(c.time); });
+    world.run();
+    ASSERT_EQ(times.size(), 1u) << solver_name(s);
+    EXPECT_EQ(times[0], T(4)) << solver_name(s);
+  }
+}
+
+}  // namespace
+}  // namespace pge
