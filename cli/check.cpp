@@ -56,10 +56,8 @@ template <class T> SceneCheck check_scene(const LoadedScene& loaded, const Check
   c.scalar = std::string(scalar_name(ScalarTraits<T>::kind));
   c.solver = std::string(solver_name(world.solver()));
   c.filter = !opt.no_filter;
-  world.on_collision([&](const CollisionInfo<T>& info) {
-    const oracle::ExactEvent e = oracle::exact_event(info);
-    const oracle::Judgement j = referee.judge(e, oracle::exact_motion(world.motion(info.a)),
-                                              oracle::exact_motion(world.motion(info.b)));
+  oracle::follow(world, referee, [&c](const CollisionInfo<T>& info, const oracle::ExactEvent& e,
+                                      const oracle::Judgement& j) {
     c.events.push_back(make_record(c.events.size(), to_double(info.time), e, j));
   });
   const auto start = Clock::now();

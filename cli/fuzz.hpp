@@ -1,4 +1,5 @@
-// `pge fuzz`: generate scenes, check every invariant, shrink failures into regression fixtures.
+// `pge fuzz`: generate scenes, check every invariant and the exact oracle's verdicts, shrink
+// failures into regression fixtures.
 #pragma once
 
 #include "pge/roots.hpp"
@@ -18,6 +19,7 @@ struct FuzzOptions {
   std::string out = "fixtures/regressions";  // where shrunk failures are written
   std::uint32_t max_failures = 10;  // stop after this many distinct failures
   bool storms_fail = false;
+  bool oracle = true;             // judge every event with the exact oracle (miss, phantom, rounding)
   bool polygons = true;
   bool progress = false;
   bool quiet = false;

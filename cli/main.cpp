@@ -90,6 +90,10 @@ int main(int argc, char** argv) {
   bool no_polygons = false;
   fuzz_cmd->add_flag("--no-polygons", no_polygons, "Generate scenes of circles and segments only");
   fuzz_cmd->add_flag("--storms-fail", fuzz.storms_fail, "Count event storms (resting contacts) as failures");
+  bool no_oracle = false;
+  fuzz_cmd->add_flag("--no-oracle", no_oracle,
+                     "Check the invariants only, without judging every event by the exact oracle (faster); the "
+                     "oracle never judges the fast solver");
   fuzz_cmd->add_flag("--quiet,-q", fuzz.quiet, "Print no summary");
   fuzz_cmd->add_flag("--progress", fuzz.progress, "Show progress on stderr (default: only when stderr is a terminal)");
 
@@ -147,6 +151,7 @@ int main(int argc, char** argv) {
       }
       if (fuzz.cases == 0 && fuzz.time_limit == 0) fuzz.cases = 1000;
       fuzz.polygons = !no_polygons;
+      fuzz.oracle = !no_oracle;
       fuzz.shard = shard;
       fuzz.shards = shards;
       pge::parse_solver_kind(fuzz_solver, fuzz.solver);

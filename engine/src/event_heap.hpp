@@ -21,6 +21,7 @@ template <class T> struct Scheduled {
   bool corner = false;                  // a vertex against an edge's end (contact_polygon.hpp)
   BodyIndex partner = kNoBody;          // the other body of the pair, seen from the owner
   std::uint64_t partner_version = 0;    // the partner's version when this was predicted
+  bool refined = false;                 // certified: time re-derived from the exact paths (refine.hpp)
 
   bool valid() const { return lo != kNoBody; }
 

@@ -10,12 +10,14 @@
 
 #include "contact.hpp"
 #include "event_heap.hpp"
+#include "refine.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <queue>
+#include <sstream>
 #include <stdexcept>
 
 namespace pge {
@@ -85,11 +87,59 @@ template <class T> struct World<T>::Impl {
     const Body& b = bodies[hi];
     if (a.fixed && b.fixed) return std::nullopt;
     ++counts.predictions;
-    auto c = predict_contact(solver, a.shape, kinematics(a, now), b.shape, kinematics(b, now), horizon - now);
+    const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
+    if (solver != SolverKind::Fast && a.shape.kind == ShapeKind::Circle && b.shape.kind == ShapeKind::Circle) {
+      const Vec2<T> d = kb.p - ka.p, dv = kb.v - ka.v, da = kb.a - ka.a;
+      const T r = a.shape.radius + b.shape.radius;
+      const Poly<T> p = distance_poly(d, dv, da, r);
+      using std::abs;
+      const T speed = max_abs(ka.v) + max_abs(kb.v) + (max_abs(ka.a) + max_abs(kb.a)) * std::max(T(1), abs(now));
+      if (refine::near_graze(p, d, dv, da, r, pair_scale(a.shape, ka.p, b.shape, kb.p), speed, horizon - now)) {
+        bool overlapping = false;
+        auto c = exact_circle_prediction(a, b, overlapping);
+        // Overlapping (by round-off) and receding: no crossing to find exactly, and the
+        // turning-overlap rule (roots.hpp) belongs to the rounded prediction below.
+        if (c || !overlapping) return c;
+      }
+    }
+    auto c = predict_contact(solver, a.shape, ka, b.shape, kb, horizon - now);
     if (!c) return std::nullopt;
     c->time = now + c->time;  // relative to absolute
     if (c->time > horizon) return std::nullopt;
     return c;
+  }
+
+  // A certified event's time, correctly rounded from the exact paths (refine.hpp); the
+  // predicted time if no crossing is found near it.
+  T refined_time(const Scheduled<T>& s) const {
+    const Body& a = bodies[s.lo];
+    const Body& b = bodies[s.hi];
+    const auto ea = refine::exact_body(a.shape, a.fixed, a.t0, a.p0, a.v0, a.acc);
+    const auto eb = refine::exact_body(b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc);
+    const auto sign = [&](const refine::Exact& t) { return refine::contact_sign(ea, eb, s, t); };
+    return refine::correctly_rounded_crossing(s.time, now, sign).value_or(s.time);
+  }
+
+  // Two circles that pass within rounding of touching: predicted from the exact paths
+  // (refine.hpp). Counted in counts.exact_predictions.
+  // `overlapping`: whether the pair overlaps exactly at `now`.
+  std::optional<PredictedContact<T>> exact_circle_prediction(const Body& a, const Body& b, bool& overlapping) {
+    ++counts.exact_predictions;
+    const auto ea = refine::exact_body(a.shape, a.fixed, a.t0, a.p0, a.v0, a.acc);
+    const auto eb = refine::exact_body(b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc);
+    const refine::Exact t_now = refine::Exact::of(now);
+    detail::exact::IntPoly poly = refine::exact_circle_poly(ea, eb, t_now);
+    overlapping = poly.c[0] < 0;
+    detail::exact::ExactSolver<T> exact(std::move(poly), detail::exact::Dyadic{},
+                                        detail::exact::to_dyadic(T(horizon - now)));
+    std::optional<PredictedContact<T>> out;
+    auto visit = [&](const T& tau, bool overlap) {
+      out = PredictedContact<T>{now + tau, ContactKind::CircleCircle, 0, 0, overlap};
+      return true;
+    };
+    exact.visit(StartRule::OverlapCollides, 0, visit);
+    if (out && out->time > horizon) return std::nullopt;
+    return out;
   }
 
   void reschedule(BodyIndex i) {
@@ -259,6 +309,20 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
   w.solver = options.solver.value_or(scene.run.solver);
   w.max_events = options.max_events > 0 ? options.max_events : scene.run.max_events;
   w.fps = options.frames_per_second >= 0 ? options.frames_per_second : scene.run.frames_per_second;
+  // The overrides get the scene's own checks (validate_scene): a horizon in the supported
+  // range, and a bounded number of frames, which max_events does not limit.
+  const double until = options.until >= 0 ? options.until : scene.run.until;
+  auto shortest = [](double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+  };
+  if (!(until <= kMaxSceneMagnitude))
+    throw std::invalid_argument("until: out of the supported range: at most " + shortest(kMaxSceneMagnitude) +
+                                " seconds, got " + shortest(until));
+  if (!(std::isfinite(w.fps) && w.fps * until <= kMaxFramesPerRun))
+    throw std::invalid_argument("frames per second: " + shortest(w.fps) + " gives more than the supported " +
+                                shortest(kMaxFramesPerRun) + " frames over " + shortest(until) + " s");
   w.bodies.reserve(scene.bodies.size());
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDesc& d = scene.bodies[i];
@@ -324,6 +388,17 @@ template <class T> bool World<T>::step() {
       if (!partner.fixed && partner.version != s.partner_version) {
         ++w.counts.stale;  // the partner moved differently since this was predicted
         w.reschedule(owner);
+        continue;
+      }
+      // Certified: re-derive the time exactly, then merge again (it may now fall after another
+      // event). Overlap-rule contacts at `now` are checked too: the rounded state may overlap
+      // where the exact paths are still an ulp apart. The turning-overlap rule's time (later
+      // than now) is a turning point, not a crossing, and keeps its time.
+      if (w.solver == SolverKind::Certified && !s.refined && (!s.at_start_overlap || s.time <= w.now)) {
+        Scheduled<T> r = s;
+        r.refined = true;
+        r.time = std::max(w.now, w.refined_time(s));
+        w.heap.set(owner, r);
         continue;
       }
       w.now = std::max(w.now, s.time);

@@ -35,6 +35,9 @@ std::string_view failure_kind_name(FailureKind k) {
     case FailureKind::Momentum: return "momentum";
     case FailureKind::Energy: return "energy";
     case FailureKind::Storm: return "storm";
+    case FailureKind::Miss: return "miss";
+    case FailureKind::Phantom: return "phantom";
+    case FailureKind::Rounding: return "rounding";
     case FailureKind::Count: break;
   }
   return "?";

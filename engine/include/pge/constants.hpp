@@ -13,6 +13,27 @@ namespace pge {
 // which the overlap rule then resolves with a collision at t = 0.
 inline constexpr double kStartOverlapTolerance = 1e-9;
 
+// Supported range of scene values, checked by validate_scene. Every coordinate (positions,
+// segment endpoints, polygon vertices), velocity, acceleration and gravity component is 0 or
+// has magnitude in [kMinSceneScale, kMaxSceneMagnitude]; radii and masses lie in that range;
+// the horizon (run.until, or pge run --until) is at most kMaxSceneMagnitude.
+// SI units, but the bound is about floating point, not physics: a contact polynomial's
+// coefficients are products of two such values and its highest term is (a t^2)^2, at most
+// (1e30 * 1e60)^2 = 1e180; energies m v^2 stay below 1e90 and an impulse divides by
+// n.n / m <= 1e60 * 1e30. So nothing the engine computes comes near overflow (1.8e308), and
+// products of a few values stay far from the subnormals (below 2.2e-308), whose rounding error
+// is absolute: the error bounds of the engine and the invariant checks are relative. Beyond this range a scene would silently produce infinities and NaNs
+// (gravity 1e289 does within the first event); a clear error is better. Raising it towards
+// 1e38 keeps that margin for double only; float runs already round such scenes badly.
+inline constexpr double kMaxSceneMagnitude = 1e30;
+inline constexpr double kMinSceneScale = 1e-30;
+
+// Frame events in one run, at most (run.until * frames_per_second, whichever gives them):
+// frames do not count against max_events, so without a bound a high frame rate would make a run
+// that never ends (and a trace that fills the disk). 1e9 frames is already a trace of
+// terabytes for a few bodies.
+inline constexpr double kMaxFramesPerRun = 1e9;
+
 // Event storm: a pair of bodies colliding more than kStormCollisions times while simulated time
 // advances by less than kStormWindowRelative * max(1, |t|) seconds is reported as a storm and
 // stops the run. Dimensionless counts and a relative time span. Too low a count would flag a

@@ -39,6 +39,7 @@ struct EventCounts {
   std::uint64_t frames = 0;
   std::uint64_t stale = 0;        // queue entries dropped because a partner had changed
   std::uint64_t predictions = 0;  // pair predictions computed
+  std::uint64_t exact_predictions = 0;  // of those, near-grazes decided from the exact paths
 };
 
 // The closed-form path the engine holds for a body: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2

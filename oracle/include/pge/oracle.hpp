@@ -135,4 +135,15 @@ class Referee {
 // The exact next event of a state.
 NextEvent next_event(const ExactState& state, const RefereeOptions& options = {});
 
+// Has `referee` judge every collision of `world` from now on (installs the world's collision
+// callback): on_judged(info, event, judgement) is called after each judgement. The referee must
+// have been made from the world's state before its first step, and must outlive the run.
+template <class T, class OnJudged> void follow(World<T>& world, Referee& referee, OnJudged on_judged) {
+  world.on_collision([&world, &referee, on_judged](const CollisionInfo<T>& info) {
+    const ExactEvent e = exact_event(info);
+    const Judgement j = referee.judge(e, exact_motion(world.motion(info.a)), exact_motion(world.motion(info.b)));
+    on_judged(info, e, j);
+  });
+}
+
 }  // namespace pge::oracle

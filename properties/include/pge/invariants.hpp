@@ -38,6 +38,10 @@ enum class FailureKind : std::uint8_t {
   Momentum,    // a collision between moving bodies changed momentum past kMomentumEps
   Energy,      // an elastic collision changed kinetic energy past kCollisionEnergyEps
   Storm,       // an event storm (counted as a failure only when asked)
+  // Judged by the exact oracle (pge fuzz; not by check_invariants, which has no oracle):
+  Miss,        // the engine skipped a contact that comes exactly earlier
+  Phantom,     // the engine processed a contact the exact paths do not make
+  Rounding,    // certified: an event time that is not the exact time correctly rounded
   Count,
 };
 std::string_view failure_kind_name(FailureKind k);

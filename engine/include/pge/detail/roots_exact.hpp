@@ -279,6 +279,8 @@ template <class T> T round_to_scalar(const Dyadic& x) {
 template <class T> class ExactSolver {
  public:
   ExactSolver(const Poly<T>& p, const T& lo, const T& hi) : p_(to_int_poly(p)), lo_(to_dyadic(lo)), hi_(to_dyadic(hi)) {}
+  // A polynomial known exactly (a positive multiple of it), on [lo, hi].
+  ExactSolver(IntPoly p, Dyadic lo, Dyadic hi) : p_(std::move(p)), lo_(std::move(lo)), hi_(std::move(hi)) {}
 
   template <class Visit> bool visit(StartRule rule, int skip, Visit& visit) {
     skip_ = skip;
