@@ -134,7 +134,8 @@ int fuzz_command(const FuzzOptions& o) {
 
   // Case k of the whole campaign belongs to shard k mod shards: shards with one seed never
   // overlap, and together they run exactly the cases of one unsharded campaign.
-  for (std::uint64_t k = o.shard;; k += o.shards) {
+  const std::uint64_t first_k = o.first + (o.shard + o.shards - o.first % o.shards) % o.shards;  // first k >= first in this shard
+  for (std::uint64_t k = first_k;; k += o.shards) {
     if (o.cases > 0 && cases >= o.cases) break;
     if (o.time_limit > 0 && elapsed() >= o.time_limit) break;
     if (o.cases == 0 && o.time_limit == 0) break;

@@ -13,6 +13,7 @@ struct FuzzOptions {
   double time_limit = 0;          // seconds of wall time; 0: no limit (then --cases bounds it)
   std::uint64_t cases = 0;        // cases to run in this shard; 0: no limit (then --time bounds it)
   std::uint64_t seed = 1;
+  std::uint64_t first = 0;        // first campaign case to run (reproduce case K: --first K --cases 1)
   std::uint32_t shard = 0;        // this shard's index in [0, shards)
   std::uint32_t shards = 1;
   SolverKind solver = SolverKind::Robust;

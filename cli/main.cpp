@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   fuzz_cmd->add_option("--time", fuzz.time_limit, "Seconds of wall time to fuzz (0: no limit)")->check(kNonNegative);
   fuzz_cmd->add_option("--cases", fuzz.cases, "Cases to run in this shard (0: no limit)");
   fuzz_cmd->add_option("--seed", fuzz.seed, "Campaign seed (same seed, same cases)");
+  fuzz_cmd->add_option("--first", fuzz.first, "First campaign case to run (to reproduce case K: --first K --cases 1)");
   fuzz_cmd->add_option("--shard", fuzz_shard, "i/n: run the i-th of n disjoint parts of the campaign (0-based)");
   fuzz_cmd->add_option("--solver", fuzz_solver, "Root solver: fast, robust, certified")
       ->check(CLI::IsMember({"fast", "robust", "certified"}));

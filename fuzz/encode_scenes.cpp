@@ -9,6 +9,8 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <span>
 #include <string>
 
 namespace {
@@ -26,9 +28,23 @@ pge::Scene carried_part(const pge::Scene& s) {
 
 }  // namespace
 
+// --decode FILE...: prints the scene each input decodes to, as JSON (to turn a libFuzzer
+// artifact into a fixture).
+int decode_files(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i) {
+    std::ifstream in(argv[i], std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+    std::fputs(pge::write_scene(pge::fuzz::decode_scene(std::span<const std::uint8_t>(data, bytes.size()))).c_str(),
+               stdout);
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "--decode") return decode_files(argc, argv);
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s OUT_DIR SCENE.json...\n", argv[0]);
+    std::fprintf(stderr, "usage: %s OUT_DIR SCENE.json...\n       %s --decode INPUT...\n", argv[0], argv[0]);
     return 2;
   }
   const std::filesystem::path out_dir = argv[1];

@@ -9,11 +9,12 @@ set -uo pipefail
 
 usage() {
   cat <<'USAGE'
-Usage: scripts/fuzz-campaign.sh [--seconds S] [--build-dir DIR] [--jobs N] [--no-build]
+Usage: scripts/fuzz-campaign.sh [--seconds S] [--build-dir DIR] [--jobs N] [--no-build] [--parallel]
   --seconds S      seconds per target (default: 120)
   --build-dir DIR  clang build directory (default: build-fuzz); configured if needed
   --jobs N         parallel build jobs (default: 1)
   --no-build       use the targets already built in DIR
+  --parallel       run the two targets at the same time (one core each) instead of one after the other
 Writes out/fuzz/<target>.log, corpora in out/fuzz/corpus/{engine,reader}, and artifacts
 (crash-*, timeout-*, oom-*, slow-unit-*) in out/fuzz/artifacts/<target>/.
 Reproduce an artifact: DIR/fuzz/fuzz_engine out/fuzz/artifacts/fuzz_engine/crash-...
@@ -24,6 +25,7 @@ die() { echo "fuzz-campaign.sh: $*" >&2; exit 2; }
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=120
+parallel=0
 build="$root/build-fuzz"
 jobs=1
 do_build=1
@@ -34,6 +36,7 @@ while [[ $# -gt 0 ]]; do
                  case "$2" in /*) build=$2 ;; *) build="$PWD/$2" ;; esac; shift 2 ;;
     --jobs) [[ $# -ge 2 && "$2" =~ ^[1-9][0-9]*$ ]] || die "--jobs needs a positive integer"; jobs=$2; shift 2 ;;
     --no-build) do_build=0; shift ;;
+    --parallel) parallel=1; shift ;;
     -h|--help) usage; exit 0 ;;
     *) die "unknown argument: $1 (see --help)" ;;
   esac
@@ -58,20 +61,37 @@ done
 echo "== seeding corpora"
 "$root/scripts/fuzz-corpus.sh" --build-dir "$build" --out "$out/corpus" || die "seeding the corpora failed"
 
-found=0
-summary=()
-for target in fuzz_engine fuzz_reader; do
-  corpus="$out/corpus/${target#fuzz_}"
-  artifacts="$out/artifacts/$target"
-  log="$out/$target.log"
+# One target: run it for $seconds into its log (its exit code in $out/<target>.exit).
+run_target() {
+  local target=$1
+  local corpus="$out/corpus/${target#fuzz_}"
+  local artifacts="$out/artifacts/$target"
+  local log="$out/$target.log"
   mkdir -p "$artifacts"
-  extra=()
+  local extra=()
   [[ $target == fuzz_reader ]] && extra+=("-dict=$root/fuzz/reader.dict")
   echo "== $target for ${seconds}s (log: $log)"
   # -timeout: one input running longer is a hang; -rss_limit_mb: memory blow-up is a failure.
   nice -n 10 "$build/fuzz/$target" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 \
       -print_final_stats=1 -artifact_prefix="$artifacts/" "${extra[@]}" >"$log" 2>&1
-  code=$?
+  echo $? >"$out/$target.exit"
+}
+
+if [[ $parallel -eq 1 ]]; then
+  run_target fuzz_engine &
+  run_target fuzz_reader &
+  wait
+else
+  run_target fuzz_engine
+  run_target fuzz_reader
+fi
+
+found=0
+summary=()
+for target in fuzz_engine fuzz_reader; do
+  artifacts="$out/artifacts/$target"
+  log="$out/$target.log"
+  code=$(cat "$out/$target.exit")
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
   rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$')
   last=$(grep -E '^#[0-9]+' "$log" | grep -E 'cov: ' | tail -1)

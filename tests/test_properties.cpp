@@ -141,11 +141,16 @@ RC_GTEST_PROP(Properties, NoOverlapBeyondTheBound, ()) {
 // indices, decides the outcome, so relabelled or mirrored scenes may legitimately part ways
 // after it. An "instant" groups events less than kInstantRelative * max(1, |t|) apart: after
 // the first impulse of a simultaneous pair the second contact is re-predicted from rounded
-// positions and may land an ulp or so later.
+// positions and may land an ulp or so later. Two runs are compared up to the earlier of their
+// two ambiguous instants: when three bodies touch at once, one order of impulses may process
+// only two of the three contacts (the third no longer approaching) and look unambiguous, while
+// the other order processes all three (found at 100,000 cases: three circles meeting at one
+// point, fixtures not needed: the property's own rule).
 constexpr double kInstantRelative = 1e-9;
 using EventKey = std::tuple<double, std::string, std::string>;
-std::vector<EventKey> unambiguous_prefix(const Scene& s, const std::vector<CollisionInfo<double>>& events) {
-  std::vector<EventKey> out;
+
+// The start of the first instant at which a moving body takes part in two events (infinity if none).
+double first_ambiguous_instant(const Scene& s, const std::vector<CollisionInfo<double>>& events) {
   std::size_t i = 0;
   while (i < events.size()) {
     std::size_t j = i + 1;
@@ -157,17 +162,31 @@ std::vector<EventKey> unambiguous_prefix(const Scene& s, const std::vector<Colli
       ++uses[events[k].b];
     }
     for (const auto& [body, n] : uses)
-      if (n > 1 && !s.bodies[body].fixed) i = events.size();  // stop before this instant
-    if (i == events.size()) break;
-    for (std::size_t k = i; k < j; ++k) {
-      std::string a = s.bodies[events[k].a].id, b = s.bodies[events[k].b].id;
-      if (b < a) std::swap(a, b);
-      out.emplace_back(events[k].time, a, b);
-    }
+      if (n > 1 && !s.bodies[body].fixed) return events[i].time;
     i = j;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+// The events strictly before the instant that starts at `cut`, as sorted keys.
+std::vector<EventKey> events_before(const Scene& s, const std::vector<CollisionInfo<double>>& events, double cut) {
+  std::vector<EventKey> out;
+  const double window = kInstantRelative * std::max(1.0, std::abs(cut));
+  for (const CollisionInfo<double>& e : events) {
+    if (!(e.time < cut - window)) break;
+    std::string a = s.bodies[e.a].id, b = s.bodies[e.b].id;
+    if (b < a) std::swap(a, b);
+    out.emplace_back(e.time, a, b);
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+// Whether two runs of equivalent scenes agree up to the first ambiguous instant of either.
+bool same_unambiguous_events(const Scene& sa, const std::vector<CollisionInfo<double>>& a, const Scene& sb,
+                             const std::vector<CollisionInfo<double>>& b) {
+  const double cut = std::min(first_ambiguous_instant(sa, a), first_ambiguous_instant(sb, b));
+  return events_before(sa, a, cut) == events_before(sb, b, cut);
 }
 
 Scene mirrored_in_x(Scene s) {
@@ -191,7 +210,7 @@ RC_GTEST_PROP(Properties, MirroringInXGivesTheSameEvents, ()) {
   const Recorded a = run_scene(g.scene);
   const Scene m = mirrored_in_x(g.scene);
   const Recorded b = run_scene(m);
-  RC_ASSERT(unambiguous_prefix(g.scene, a.events) == unambiguous_prefix(m, b.events));
+  RC_ASSERT(same_unambiguous_events(g.scene, a.events, m, b.events));
 }
 
 // 5b. Relabelling (reversing the body order) gives the same events, bit for bit, up to the first
@@ -203,7 +222,7 @@ RC_GTEST_PROP(Properties, RelabellingGivesTheSameEvents, ()) {
   std::reverse(r.bodies.begin(), r.bodies.end());
   const Recorded a = run_scene(g.scene);
   const Recorded b = run_scene(r);
-  RC_ASSERT(unambiguous_prefix(g.scene, a.events) == unambiguous_prefix(r, b.events));
+  RC_ASSERT(same_unambiguous_events(g.scene, a.events, r, b.events));
 }
 
 // 5c. Swapping the two bodies of a two-body scene gives the same events bit for bit (the pair's
@@ -220,7 +239,7 @@ RC_GTEST_PROP(Properties, SwappingAPairGivesTheSameEvents, ()) {
   std::swap(swapped.bodies[0], swapped.bodies[1]);
   const Recorded a = run_scene(g.scene);
   const Recorded b = run_scene(swapped);
-  RC_ASSERT(unambiguous_prefix(g.scene, a.events) == unambiguous_prefix(swapped, b.events));
+  RC_ASSERT(same_unambiguous_events(g.scene, a.events, swapped, b.events));
 }
 
 // 5d. Translating by a dyadic offset that keeps every starting coordinate exact gives the same

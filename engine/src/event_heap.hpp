@@ -52,6 +52,21 @@ template <class T> class EventHeap {
   BodyIndex top_index() const { return heap_.front(); }
   const Scheduled<T>& at(BodyIndex i) const { return entries_[i]; }
 
+  // Owners of every valid entry whose time is <= bound, in heap order (children are never
+  // earlier than their parent, so the walk stops at the first later entry on each branch).
+  template <class F> void visit_up_to(const T& bound, F f) const {
+    std::vector<std::size_t> stack;
+    if (!heap_.empty()) stack.push_back(0);
+    while (!stack.empty()) {
+      const std::size_t k = stack.back();
+      stack.pop_back();
+      const Scheduled<T>& e = entries_[heap_[k]];
+      if (!e.valid() || !(e.time <= bound)) continue;
+      f(heap_[k]);
+      for (std::size_t c = 2 * k + 1; c <= 2 * k + 2 && c < heap_.size(); ++c) stack.push_back(c);
+    }
+  }
+
   void set(BodyIndex i, const Scheduled<T>& s) {
     entries_[i] = s;
     std::size_t k = pos_[i];

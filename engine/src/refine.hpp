@@ -160,13 +160,15 @@ int contact_sign(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T
 inline constexpr double kNearGrazeRelative = 0x1p-36;
 
 // Whether the rounded function p = |d + dv t + da t^2 / 2|^2 - r^2 comes within rounding of
-// zero at a local minimum in (0, horizon], or starts within rounding of zero with a slope
-// within rounding of zero (a touching pair whose relative speed is rounding noise: whether it
-// approaches is the rounding's choice). `scale` is the pair's coordinate magnitude, `speed` the
-// magnitude of the velocities the relative velocity was computed from.
+// zero at a local minimum in (0, horizon], or starts within rounding of zero while approaching
+// or receding by less than 2^-36 of its relative speed (p'(0) = 2 d.dv against 2 |d| |dv|): a
+// touching pair whose approach is the rounding's call. That includes the ever smaller
+// residues a cascade of hand-overs leaves (relative speeds of 1e-16, 1e-32, ...), which the
+// robust solver's degree reduction would drop as negligible. `scale` is the pair's coordinate
+// magnitude.
 template <class T>
 bool near_graze(const Poly<T>& p, const Vec2<T>& d, const Vec2<T>& dv, const Vec2<T>& da, const T& r, const T& scale,
-                const T& speed, const T& horizon) {
+                const T& horizon) {
   using std::abs;
   using std::sqrt;
   // The square of the pair's length scale at t (|d| + r + |dv| t + |da| t^2 / 2 + scale), bounded
@@ -177,7 +179,7 @@ bool near_graze(const Poly<T>& p, const Vec2<T>& d, const Vec2<T>& dv, const Vec
   };
   const auto close = [&](const T& t) { return abs(p(t)) <= T(kNearGrazeRelative) * reach2(t); };
   if (abs(p.c[0]) <= T(kNearGrazeRelative) * reach2(T(0)) &&
-      abs(p.c[1]) <= T(kNearGrazeRelative) * sqrt(reach2(T(0))) * speed)
+      p.c[1] <= T(2 * kNearGrazeRelative) * sqrt(dot(d, d) * dot(dv, dv)))
     return true;
   if (p.degree == 2) {
     if (!(p.c[2] > T(0)) || !(p.c[1] < T(0))) return false;

@@ -38,6 +38,10 @@ template <class T> struct World<T>::Impl {
     std::string id;
     T storm_start{};
     std::uint32_t storm_count = 0;
+    // A circle pair the exact paths say never touches although the rounded prediction did
+    // (refine_near_top): not predicted again while both bodies keep their motions.
+    BodyIndex no_contact_with = kNoBody;
+    std::uint64_t no_contact_version = 0, no_contact_partner_version = 0;
   };
 
   struct Timer {
@@ -86,15 +90,14 @@ template <class T> struct World<T>::Impl {
     const Body& a = bodies[lo];
     const Body& b = bodies[hi];
     if (a.fixed && b.fixed) return std::nullopt;
+    if (excluded(a, hi, b) || excluded(b, lo, a)) return std::nullopt;
     ++counts.predictions;
     const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
     if (solver != SolverKind::Fast && a.shape.kind == ShapeKind::Circle && b.shape.kind == ShapeKind::Circle) {
       const Vec2<T> d = kb.p - ka.p, dv = kb.v - ka.v, da = kb.a - ka.a;
       const T r = a.shape.radius + b.shape.radius;
       const Poly<T> p = distance_poly(d, dv, da, r);
-      using std::abs;
-      const T speed = max_abs(ka.v) + max_abs(kb.v) + (max_abs(ka.a) + max_abs(kb.a)) * std::max(T(1), abs(now));
-      if (refine::near_graze(p, d, dv, da, r, pair_scale(a.shape, ka.p, b.shape, kb.p), speed, horizon - now)) {
+      if (refine::near_graze(p, d, dv, da, r, pair_scale(a.shape, ka.p, b.shape, kb.p), horizon - now)) {
         bool overlapping = false;
         auto c = exact_circle_prediction(a, b, overlapping);
         // Overlapping (by round-off) and receding: no crossing to find exactly, and the
@@ -105,19 +108,31 @@ template <class T> struct World<T>::Impl {
     auto c = predict_contact(solver, a.shape, ka, b.shape, kb, horizon - now);
     if (!c) return std::nullopt;
     c->time = now + c->time;  // relative to absolute
-    if (c->time > horizon) return std::nullopt;
+    // Robust and certified keep contacts predicted just past the horizon: the exact time may
+    // still be before it (refine_near_top decides).
+    if (c->time > (solver == SolverKind::Fast ? horizon : refine_bound(horizon))) return std::nullopt;
     return c;
   }
 
   // A certified event's time, correctly rounded from the exact paths (refine.hpp); the
   // predicted time if no crossing is found near it.
-  T refined_time(const Scheduled<T>& s) const {
+  std::optional<T> refined_time(const Scheduled<T>& s) const {
     const Body& a = bodies[s.lo];
     const Body& b = bodies[s.hi];
     const auto ea = refine::exact_body(a.shape, a.fixed, a.t0, a.p0, a.v0, a.acc);
     const auto eb = refine::exact_body(b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc);
     const auto sign = [&](const refine::Exact& t) { return refine::contact_sign(ea, eb, s, t); };
-    return refine::correctly_rounded_crossing(s.time, now, sign).value_or(s.time);
+    return refine::correctly_rounded_crossing(s.time, now, sign);
+  }
+
+  static bool relative_acc_zero(const Body& a, const Body& b) {
+    const Vec2<T> aa = a.fixed ? Vec2<T>{} : a.acc, ab = b.fixed ? Vec2<T>{} : b.acc;
+    return aa.x == ab.x && aa.y == ab.y;
+  }
+
+  bool excluded(const Body& x, BodyIndex partner, const Body& y) const {
+    return x.no_contact_with == partner && x.no_contact_version == x.version &&
+           x.no_contact_partner_version == y.version;
   }
 
   // Two circles that pass within rounding of touching: predicted from the exact paths
@@ -130,16 +145,114 @@ template <class T> struct World<T>::Impl {
     const refine::Exact t_now = refine::Exact::of(now);
     detail::exact::IntPoly poly = refine::exact_circle_poly(ea, eb, t_now);
     overlapping = poly.c[0] < 0;
+    // Overlapping and receding (not decreasing at now): no crossing now, and whatever follows
+    // belongs to the turning-overlap rule or to a later crossing, which the rounded prediction
+    // handles (the callers fall back to it); skip the Sturm chain, the costly part.
+    if (overlapping && detail::exact::sign_just_after(detail::exact::derivative(poly), detail::exact::Dyadic{}) >= 0)
+      return std::nullopt;
+    // Up to the refinement bound past the horizon: now + tau is rounded, and the exact time may
+    // still be the horizon (refine_near_top rounds it once, from the exact paths).
     detail::exact::ExactSolver<T> exact(std::move(poly), detail::exact::Dyadic{},
-                                        detail::exact::to_dyadic(T(horizon - now)));
+                                        detail::exact::to_dyadic(T(refine_bound(horizon) - now)));
     std::optional<PredictedContact<T>> out;
     auto visit = [&](const T& tau, bool overlap) {
       out = PredictedContact<T>{now + tau, ContactKind::CircleCircle, 0, 0, overlap};
       return true;
     };
     exact.visit(StartRule::OverlapCollides, 0, visit);
-    if (out && out->time > horizon) return std::nullopt;
+    if (out && out->time > refine_bound(horizon)) return std::nullopt;
     return out;
+  }
+
+  // Exact times for certified events (refine.hpp). A prediction from the rounded state can be
+  // off by hundreds of ulps, so the queue's order near its top is not the exact order: before
+  // the top event is processed, it and every unrefined contact scheduled within
+  // kRefineWindowRelative of it are re-derived exactly (a contact whose partner has changed is
+  // predicted again instead). Returns true if anything changed (the caller merges again).
+  // Overlap-rule contacts at `now` are checked too (the rounded state may overlap where the
+  // exact paths are still an ulp apart); the turning-overlap rule's time (later than now) is a
+  // turning point, not a crossing, and keeps its time.
+  // The latest time whose contacts may be exactly as early as t (kRefineWindowRelative).
+  static T refine_bound(const T& t) {
+    using std::abs;
+    return t + T(kRefineWindowRelative) * std::max(T(1), abs(t));
+  }
+
+  bool refine_near_top() {
+    const T bound = refine_bound(heap.top().time);
+    std::vector<BodyIndex> owners;
+    heap.visit_up_to(bound, [&](BodyIndex i) {
+      if (!heap.at(i).refined) owners.push_back(i);
+    });
+    for (BodyIndex i : owners) {
+      const Scheduled<T> s = heap.at(i);
+      const Body& partner = bodies[s.partner];
+      if (!partner.fixed && partner.version != s.partner_version) {
+        ++counts.stale;
+        reschedule(i);
+        continue;
+      }
+      Scheduled<T> r = s;
+      r.refined = true;
+      if (!s.at_start_overlap || s.time <= now) {
+        const std::optional<T> t = refined_time(s);
+        if (t && (*t > now || s.contact != ContactKind::CircleCircle)) {
+          r.time = std::max(now, *t);
+        } else if (s.contact == ContactKind::CircleCircle) {
+          // The exact paths do not cross near the predicted time, or already touch at `now`
+          // (where only an approaching pair collides): the rounded state may have invented the
+          // contact (a pair left overlapping by one rounding and receding exactly). Two circles
+          // are predicted again from the exact polynomial, overlap rule included; if they never
+          // touch, the owner's next contact is scheduled instead.
+          Body& x = bodies[i];
+          const Body& y = bodies[s.partner];
+          bool overlapping = false;
+          const auto c = exact_circle_prediction(bodies[s.lo], bodies[s.hi], overlapping);
+          if (c) {
+            r.at_start_overlap = c->at_start_overlap;
+            r.time = now;
+            if (!c->at_start_overlap) {  // now + tau, rounded twice: round the exact crossing once
+              r.time = c->time;
+              if (const std::optional<T> u = refined_time(r)) r.time = std::max(now, *u);
+            }
+          } else if (!overlapping || relative_acc_zero(bodies[s.lo], bodies[s.hi])) {
+            // Never touching, or overlapping and receding with no relative acceleration to turn
+            // it back (a convex parabola only rises): no contact at all.
+            x.no_contact_with = s.partner;
+            x.no_contact_version = x.version;
+            x.no_contact_partner_version = y.version;
+            reschedule(i);
+            continue;
+          }
+          // Overlapping exactly and receding under a relative acceleration: the turning-overlap
+          // rule's contact (roots.hpp), which only the rounded prediction knows, keeps its time.
+        }
+      }
+      heap.set(i, r);
+    }
+    return !owners.empty();
+  }
+
+  // Whether a contact scheduled at the horizon is a collision rather than a touch: two circles
+  // are asked of the exact polynomial (a double root inside its window is no root), where a
+  // rounded approach test cannot see relative speeds of rounding size; other pairs are asked
+  // whether they approach at that time (the impulse test of collide).
+  bool collides_at_horizon(const Scheduled<T>& s) {
+    if (s.contact == ContactKind::CircleCircle && solver != SolverKind::Fast) {
+      bool overlapping = false;
+      const auto c = exact_circle_prediction(bodies[s.lo], bodies[s.hi], overlapping);
+      return c && c->time <= horizon;
+    }
+    return approaching(s);
+  }
+
+  bool approaching(const Scheduled<T>& s) const {
+    const Body& a = bodies[s.lo];
+    const Body& b = bodies[s.hi];
+    const Kinematics<T> ka = kinematics(a, s.time), kb = kinematics(b, s.time);
+    const PredictedContact<T> contact{s.time, s.contact, s.feature_a, s.feature_b, s.at_start_overlap, s.corner};
+    const ContactGeometry<T> g = contact_geometry(contact, a.shape, ka, b.shape, kb);
+    return dot(kb.v - ka.v, g.normal) < T(0) && dot(g.normal, g.normal) > T(0);
   }
 
   void reschedule(BodyIndex i) {
@@ -304,6 +417,10 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
     std::string where = problem->body >= 0 ? "body \"" + scene.bodies[problem->body].id + "\": " : "";
     throw std::invalid_argument(where + problem->field + ": " + problem->message);
   }
+  if (scene.bodies.size() > kMaxBodiesWithoutBroadPhase)
+    throw UnsupportedScene(-1, std::to_string(scene.bodies.size()) + " bodies: at most " +
+                                   std::to_string(kMaxBodiesWithoutBroadPhase) +
+                                   " without a broad phase (every pair is predicted once at the start)");
   Impl& w = *impl_;
   w.horizon = T(options.until >= 0 ? options.until : scene.run.until);
   w.solver = options.solver.value_or(scene.run.solver);
@@ -372,6 +489,11 @@ template <class T> bool World<T>::step() {
     const bool has_frame = w.fps > 0 && w.frame_time(w.next_frame) <= w.horizon;
     T best = std::numeric_limits<T>::infinity();
     EventKind kind = EventKind::Collision;
+    // Robust and certified: a contact predicted just past the horizon is re-derived exactly
+    // before the horizon check (its exact time may be the horizon).
+    if (has_contact && w.solver != SolverKind::Fast && !contact->refined && contact->time > w.horizon &&
+        contact->time <= Impl::refine_bound(w.horizon) && w.refine_near_top())
+      continue;
     if (has_contact) best = contact->time;
     if (has_timer && w.timers.top().time < best) { best = w.timers.top().time; kind = EventKind::Timer; }
     if (has_frame && w.frame_time(w.next_frame) < best) { best = w.frame_time(w.next_frame); kind = EventKind::Frame; }
@@ -390,16 +512,19 @@ template <class T> bool World<T>::step() {
         w.reschedule(owner);
         continue;
       }
-      // Certified: re-derive the time exactly, then merge again (it may now fall after another
-      // event). Overlap-rule contacts at `now` are checked too: the rounded state may overlap
-      // where the exact paths are still an ulp apart. The turning-overlap rule's time (later
-      // than now) is a turning point, not a crossing, and keeps its time.
-      if (w.solver == SolverKind::Certified && !s.refined && (!s.at_start_overlap || s.time <= w.now)) {
-        Scheduled<T> r = s;
-        r.refined = true;
-        r.time = std::max(w.now, w.refined_time(s));
-        w.heap.set(owner, r);
-        continue;
+      // Robust and certified: the event's time, and the time of every other contact that might
+      // be the same instant or earlier, are re-derived from the exact paths before any is
+      // processed; then the queue is merged again (see refine_near_top).
+      if (w.solver != SolverKind::Fast && w.refine_near_top()) continue;
+      // A contact exactly at the horizon counts only if it is a collision: the solvers take a
+      // touch arriving at the horizon as a root (what follows it is beyond the run), but one
+      // that is not approaching there is a graze, which is no event (the oracle agrees). The
+      // run ends instead of reporting a zero-impulse event.
+      if (s.time >= w.horizon && !w.collides_at_horizon(s)) {
+        w.now = w.horizon;
+        w.reason = StopReason::ReachedUntil;
+        w.finished = true;
+        break;
       }
       w.now = std::max(w.now, s.time);
       w.collide(s);

@@ -327,6 +327,19 @@ template <class T> class ExactSolver {
     for (;;) {
       const T ta = round_to_scalar<T>(a), tb = round_to_scalar<T>(b);
       if (ta == tb) return emit(visit, ta, false);  // rounding is monotone: r rounds to it too
+      // When ta and tb are adjacent, r rounds to one of them and the tie point between them
+      // decides which. Without this, a root exactly at a tie that is not on the bisection's
+      // grid (found by pge fuzz: a dyadic root a third of the way into the bracket) keeps the
+      // bracket straddling the tie forever.
+      const Dyadic tie = midpoint(to_dyadic(ta), to_dyadic(tb));
+      const T rt = round_to_scalar<T>(tie);
+      if (rt == ta || rt == tb) {
+        if (compare(tie, a) <= 0) return emit(visit, tb, false);  // r > a >= tie
+        if (compare(tie, b) >= 0) return emit(visit, ta, false);  // r < b <= tie
+        const int st = sign_at(q, tie);
+        if (st == 0) return emit(visit, rt, false);  // exactly at the tie: ties to even
+        return emit(visit, st == sa ? tb : ta, false);
+      }
       const Dyadic m = midpoint(a, b);
       const int sm = sign_at(q, m);
       if (sm == 0) return emit(visit, round_to_scalar<T>(m), false);
