@@ -237,11 +237,20 @@ template <class T> struct World<T>::Impl {
   // are asked of the exact polynomial (a double root inside its window is no root), where a
   // rounded approach test cannot see relative speeds of rounding size; other pairs are asked
   // whether they approach at that time (the impulse test of collide).
+  // (Exactly: the contact function at the horizon is negative, the crossing came before it, or
+  // zero and decreasing just after it, a crossing exactly at it; zero and rising is a graze, and
+  // positive means the exact contact is after the horizon, however close.)
   bool collides_at_horizon(const Scheduled<T>& s) {
     if (s.contact == ContactKind::CircleCircle && solver != SolverKind::Fast) {
-      bool overlapping = false;
-      const auto c = exact_circle_prediction(bodies[s.lo], bodies[s.hi], overlapping);
-      return c && c->time <= horizon;
+      const Body& a = bodies[s.lo];
+      const Body& b = bodies[s.hi];
+      const auto ea = refine::exact_body(a.shape, a.fixed, a.t0, a.p0, a.v0, a.acc);
+      const auto eb = refine::exact_body(b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc);
+      const refine::Exact t_now = refine::Exact::of(now);
+      const detail::exact::IntPoly poly = refine::exact_circle_poly(ea, eb, t_now);
+      const detail::exact::Dyadic tau = (refine::Exact::of(horizon) - t_now).d;
+      const int at = detail::exact::sign_at(poly, tau);
+      return at < 0 || (at == 0 && detail::exact::sign_just_after(poly, tau) < 0);
     }
     return approaching(s);
   }
