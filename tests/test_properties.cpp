@@ -145,7 +145,7 @@ RC_GTEST_PROP(Properties, NoOverlapBeyondTheBound, ()) {
 // two ambiguous instants: when three bodies touch at once, one order of impulses may process
 // only two of the three contacts (the third no longer approaching) and look unambiguous, while
 // the other order processes all three (found at 100,000 cases: three circles meeting at one
-// point, fixtures not needed: the property's own rule).
+// point; a flaw of this comparison, not of the engine).
 constexpr double kInstantRelative = 1e-9;
 using EventKey = std::tuple<double, std::string, std::string>;
 
