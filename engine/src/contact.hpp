@@ -27,15 +27,20 @@ std::optional<PredictedContact<T>> circle_outline_contact(SolverKind solver, con
                                 other_first);
 }
 
+// Two circles, from their distance_poly `p`.
+template <class T>
+std::optional<PredictedContact<T>> circle_pair_contact(SolverKind solver, const Poly<T>& p, const T& horizon) {
+  auto root = point_contact(solver, p, horizon);
+  if (!root) return std::nullopt;
+  return PredictedContact<T>{root->t, ContactKind::CircleCircle, 0, 0, root->at_start_overlap};
+}
+
 template <class T>
 std::optional<PredictedContact<T>> predict_contact(SolverKind solver, const BodyShape<T>& sa, const Kinematics<T>& ka,
                                                    const BodyShape<T>& sb, const Kinematics<T>& kb, const T& horizon) {
   const bool a_circle = sa.kind == ShapeKind::Circle, b_circle = sb.kind == ShapeKind::Circle;
-  if (a_circle && b_circle) {
-    auto root = point_contact(solver, kb.p - ka.p, kb.v - ka.v, kb.a - ka.a, sa.radius + sb.radius, horizon);
-    if (!root) return std::nullopt;
-    return PredictedContact<T>{root->t, ContactKind::CircleCircle, 0, 0, root->at_start_overlap};
-  }
+  if (a_circle && b_circle)
+    return circle_pair_contact(solver, distance_poly(kb.p - ka.p, kb.v - ka.v, kb.a - ka.a, sa.radius + sb.radius), horizon);
   // Circles against fixed walls: the cheapest category, and the one a gas in a box lives on.
   if (sa.kind == ShapeKind::Segment && sa.fixed && b_circle)
     return circle_segment_contact(solver, kb.p - sa.seg_a, kb.v - ka.v, kb.a - ka.a, sb.radius, sa.seg_b - sa.seg_a,

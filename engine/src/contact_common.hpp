@@ -67,16 +67,21 @@ template <class T> Poly<T> distance_poly(const Vec2<T>& d, const Vec2<T>& dv, co
 }
 
 // Earliest approaching contact of two points at distance r, relative time in [0, horizon].
+// `p` is the pair's distance_poly (for callers that have it already).
 template <class T>
-std::optional<RootOutcome<T>> point_contact(SolverKind solver, const Vec2<T>& d, const Vec2<T>& dv, const Vec2<T>& da, const T& r,
-                                            const T& horizon) {
-  const Poly<T> p = distance_poly(d, dv, da, r);
+std::optional<RootOutcome<T>> point_contact(SolverKind solver, const Poly<T>& p, const T& horizon) {
   // Without relative acceleration the function is a convex parabola: if it is not decreasing
   // now it never will be, so most pairs of a gas are dismissed here without a solve.
   if (p.degree == 2 && p.c[1] >= T(0)) return std::nullopt;
   const RootOutcome<T> root = earliest_downward_root(solver, p, T(0), horizon);
   if (root.status != RootStatus::Root) return std::nullopt;
   return root;
+}
+
+template <class T>
+std::optional<RootOutcome<T>> point_contact(SolverKind solver, const Vec2<T>& d, const Vec2<T>& dv, const Vec2<T>& da, const T& r,
+                                            const T& horizon) {
+  return point_contact(solver, distance_poly(d, dv, da, r), horizon);
 }
 
 // A line contact function c0 + c1 t + c2 t^2 (a signed distance to a line, scaled) that is

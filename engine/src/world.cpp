@@ -93,19 +93,22 @@ template <class T> struct World<T>::Impl {
     if (excluded(a, hi, b) || excluded(b, lo, a)) return std::nullopt;
     ++counts.predictions;
     const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
+    std::optional<PredictedContact<T>> c;
     if (solver != SolverKind::Fast && a.shape.kind == ShapeKind::Circle && b.shape.kind == ShapeKind::Circle) {
       const Vec2<T> d = kb.p - ka.p, dv = kb.v - ka.v, da = kb.a - ka.a;
       const T r = a.shape.radius + b.shape.radius;
       const Poly<T> p = distance_poly(d, dv, da, r);
       if (refine::near_graze(p, d, dv, da, r, pair_scale(a.shape, ka.p, b.shape, kb.p), horizon - now)) {
         bool overlapping = false;
-        auto c = exact_circle_prediction(a, b, overlapping);
+        auto exact = exact_circle_prediction(a, b, overlapping);
         // Overlapping (by round-off) and receding: no crossing to find exactly, and the
         // turning-overlap rule (roots.hpp) belongs to the rounded prediction below.
-        if (c || !overlapping) return c;
+        if (exact || !overlapping) return exact;
       }
+      c = circle_pair_contact(solver, p, horizon - now);  // the polynomial built once
+    } else {
+      c = predict_contact(solver, a.shape, ka, b.shape, kb, horizon - now);
     }
-    auto c = predict_contact(solver, a.shape, ka, b.shape, kb, horizon - now);
     if (!c) return std::nullopt;
     c->time = now + c->time;  // relative to absolute
     // Robust and certified keep contacts predicted just past the horizon: the exact time may
@@ -114,13 +117,16 @@ template <class T> struct World<T>::Impl {
     return c;
   }
 
-  // A certified event's time, correctly rounded from the exact paths (refine.hpp); the
-  // predicted time if no crossing is found near it.
+  // A body as the exact contact functions read it (refine.hpp).
+  static refine::ExactBody<T> exact_of(const Body& b) {
+    return refine::exact_body(b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc);
+  }
+
+  // A scheduled contact's time, correctly rounded from the exact paths (refine.hpp); nothing if
+  // no crossing is found near the predicted time.
   std::optional<T> refined_time(const Scheduled<T>& s) const {
-    const Body& a = bodies[s.lo];
-    const Body& b = bodies[s.hi];
-    const auto ea = refine::exact_body(a.shape, a.fixed, a.t0, a.p0, a.v0, a.acc);
-    const auto eb = refine::exact_body(b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc);
+    const auto ea = exact_of(bodies[s.lo]);
+    const auto eb = exact_of(bodies[s.hi]);
     const auto sign = [&](const refine::Exact& t) { return refine::contact_sign(ea, eb, s, t); };
     return refine::correctly_rounded_crossing(s.time, now, sign);
   }
@@ -140,10 +146,7 @@ template <class T> struct World<T>::Impl {
   // `overlapping`: whether the pair overlaps exactly at `now`.
   std::optional<PredictedContact<T>> exact_circle_prediction(const Body& a, const Body& b, bool& overlapping) {
     ++counts.exact_predictions;
-    const auto ea = refine::exact_body(a.shape, a.fixed, a.t0, a.p0, a.v0, a.acc);
-    const auto eb = refine::exact_body(b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc);
-    const refine::Exact t_now = refine::Exact::of(now);
-    detail::exact::IntPoly poly = refine::exact_circle_poly(ea, eb, t_now);
+    detail::exact::IntPoly poly = refine::exact_circle_poly(exact_of(a), exact_of(b), refine::Exact::of(now));
     overlapping = poly.c[0] < 0;
     // Overlapping and receding (not decreasing at now): no crossing now, and whatever follows
     // belongs to the turning-overlap rule or to a later crossing, which the rounded prediction
@@ -242,12 +245,8 @@ template <class T> struct World<T>::Impl {
   // positive means the exact contact is after the horizon, however close.)
   bool collides_at_horizon(const Scheduled<T>& s) {
     if (s.contact == ContactKind::CircleCircle && solver != SolverKind::Fast) {
-      const Body& a = bodies[s.lo];
-      const Body& b = bodies[s.hi];
-      const auto ea = refine::exact_body(a.shape, a.fixed, a.t0, a.p0, a.v0, a.acc);
-      const auto eb = refine::exact_body(b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc);
       const refine::Exact t_now = refine::Exact::of(now);
-      const detail::exact::IntPoly poly = refine::exact_circle_poly(ea, eb, t_now);
+      const detail::exact::IntPoly poly = refine::exact_circle_poly(exact_of(bodies[s.lo]), exact_of(bodies[s.hi]), t_now);
       const detail::exact::Dyadic tau = (refine::Exact::of(horizon) - t_now).d;
       const int at = detail::exact::sign_at(poly, tau);
       return at < 0 || (at == 0 && detail::exact::sign_just_after(poly, tau) < 0);
