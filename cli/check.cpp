@@ -2,6 +2,7 @@
 
 #include "check_report.hpp"
 #include "exit_codes.hpp"
+#include "expect.hpp"
 #include "run.hpp"
 
 #include "pge/oracle.hpp"
@@ -10,9 +11,13 @@
 
 #include <fmt/core.h>
 
+#include <array>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <optional>
 #include <stdexcept>
 
 namespace pge::cli {
@@ -28,26 +33,65 @@ struct Progress {
   std::string label;
   Clock::time_point next = Clock::now() + kProgressInterval;
 
-  template <class T> void tick(const World<T>& w, std::size_t judged) {
+  template <class T> void tick(const World<T>& w, std::uint64_t events, bool judged) {
     if (!on || Clock::now() < next) return;
     next = Clock::now() + kProgressInterval;
-    fmt::print(stderr, "\r{}: t = {:.6g} / {:.6g}, {} events judged   ", label, to_double(w.time()), to_double(w.horizon()),
-               judged);
+    fmt::print(stderr, "\r{}: t = {:.6g} / {:.6g}, {} events{}   ", label, to_double(w.time()), to_double(w.horizon()),
+               events, judged ? " judged" : "");
   }
   void clear() const {
     if (on) fmt::print(stderr, "\r{:80}\r", "");
   }
 };
 
-template <class T> SceneCheck check_scene(const LoadedScene& loaded, const CheckOptions& opt, Progress& progress) {
+constexpr std::array<SolverKind, 3> kAllSolvers{SolverKind::Fast, SolverKind::Robust, SolverKind::Certified};
+
+// Why a run is not the one the scene's expect block describes ("" if it is): the block states
+// what happens over the scene's own horizon and event budget, in doubles.
+std::string deviation(const Scene& scene, const CheckOptions& opt) {
+  if (opt.until >= 0 && opt.until != scene.run.until)
+    return fmt::format("--until {} changes the run the expect block describes", opt.until);
+  if (opt.max_events != 0 && opt.max_events != scene.run.max_events)
+    return fmt::format("--max-events {} changes the run the expect block describes", opt.max_events);
+  if (opt.scalar != "double") return fmt::format("the expect block is stated for double, not {}", opt.scalar);
+  return {};
+}
+
+// How far the run of `solver` is held to the block (see Enforcement).
+ExpectOutcome plan(const Expect& e, SolverKind solver, bool several_solvers, const std::string& deviated) {
+  ExpectOutcome o;
+  o.storm_expected = e.present && e.stop == StopReason::EventStorm;
+  if (!e.present) {
+    // Without a block, a run the user asked for is judged as always; beside the solvers a block
+    // lists by default, fast runs for contrast.
+    if (several_solvers && !e.lists(solver)) {
+      o.enforcement = Enforcement::Contrast;
+      o.why = fmt::format("{} runs for contrast; without an expect block robust and certified are enforced",
+                          solver_name(solver));
+    }
+    return o;
+  }
+  if (!e.lists(solver)) {
+    o.enforcement = Enforcement::Contrast;
+    o.why = fmt::format("{} is not among the expect block's solvers", solver_name(solver));
+  } else if (!deviated.empty()) {
+    o.enforcement = Enforcement::Verdicts;
+    o.why = deviated;
+  } else {
+    o.enforcement = Enforcement::Full;
+  }
+  return o;
+}
+
+template <class T>
+SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKind solver, ExpectOutcome outcome,
+                       const CheckOptions& opt, Progress& progress) {
   WorldOptions wo;
   wo.until = opt.until;
   wo.max_events = opt.max_events;
-  SolverKind solver{};
-  if (parse_solver_kind(opt.solver, solver)) wo.solver = solver;
+  wo.solver = solver;
   wo.frames_per_second = 0;  // frames change nothing the oracle judges
   World<T> world(loaded.scene, wo);
-  oracle::Referee referee(oracle::exact_state(world), {!opt.no_filter, oracle::kAgreeUlps});
 
   SceneCheck c;
   c.path = loaded.path;
@@ -56,69 +100,151 @@ template <class T> SceneCheck check_scene(const LoadedScene& loaded, const Check
   c.scalar = std::string(scalar_name(ScalarTraits<T>::kind));
   c.solver = std::string(solver_name(world.solver()));
   c.filter = !opt.no_filter;
-  oracle::follow(world, referee, [&c](const CollisionInfo<T>& info, const oracle::ExactEvent& e,
-                                      const oracle::Judgement& j) {
-    c.events.push_back(make_record(c.events.size(), to_double(info.time), e, j));
-  });
+  // The block may turn the oracle off for the scene's own run; a shorter run is judged as always.
+  const bool measured = expect.present && outcome.enforcement != Enforcement::Verdicts;
+  c.judged = !(measured && !expect.oracle);
+  c.energy_start = to_double(world.kinetic_energy() + world.potential_energy());
+  c.momentum_start = vec_cast<double>(world.momentum());
+
+  ExpectTracker tracker(expect, c.bodies);
+  const auto observe = [&c, &tracker](const CollisionInfo<T>& info) {
+    ++c.contact_events;
+    tracker.observe(to_double(info.time), info.a, info.b);
+  };
+  std::optional<oracle::Referee> referee;
+  if (c.judged) {
+    referee.emplace(oracle::exact_state(world), oracle::RefereeOptions{!opt.no_filter, oracle::kAgreeUlps});
+    oracle::follow(world, *referee, [&c, &observe](const CollisionInfo<T>& info, const oracle::ExactEvent& e,
+                                                   const oracle::Judgement& j) {
+      c.events.push_back(make_record(c.events.size(), to_double(info.time), e, j));
+      observe(info);
+    });
+  } else {
+    world.on_collision(observe);
+  }
   const auto start = Clock::now();
-  while (world.step()) progress.tick(world, c.events.size());
+  while (world.step()) progress.tick(world, c.contact_events, c.judged);
   progress.clear();
-  c.engine_seconds = std::chrono::duration<double>(Clock::now() - start).count() - referee.stats().seconds;
+  const double oracle_seconds = referee ? referee->stats().seconds : 0.0;
+  c.engine_seconds = std::chrono::duration<double>(Clock::now() - start).count() - oracle_seconds;
+  c.stop_reason = world.stop_reason();
   c.stop = std::string(stop_reason_name(world.stop_reason()));
   c.time = to_double(world.time());
   c.horizon = to_double(world.horizon());
-  if (world.stop_reason() == StopReason::ReachedUntil) {
-    c.end_checked = true;
-    c.end = referee.judge_end();
+  if (world.stop_reason() == StopReason::EventStorm) {
+    c.storm_a = world.storm().a;
+    c.storm_b = world.storm().b;
   }
-  c.oracle = referee.stats();
+  if (referee && world.stop_reason() == StopReason::ReachedUntil) {
+    c.end_checked = true;
+    c.end = referee->judge_end();
+  }
+  if (referee) c.oracle = referee->stats();
+  c.energy_end = to_double(world.kinetic_energy() + world.potential_energy());
+  c.momentum_end = vec_cast<double>(world.momentum());
+  c.final_states.reserve(c.bodies);
+  for (BodyIndex i = 0; i < c.bodies; ++i) {
+    const BodySnapshot<T> s = world.snapshot(i);
+    c.final_states.push_back({vec_cast<double>(s.position), vec_cast<double>(s.velocity)});
+  }
+  c.largest_contact_overlap = to_double(world.largest_contact_overlap().relative);
+  c.expect = std::move(outcome);
+  if (measured) evaluate(expect, loaded.scene, tracker, c, c.expect);
   return c;
 }
 
-SceneCheck check_any(const LoadedScene& loaded, const CheckOptions& opt, Progress& progress) {
+SceneCheck check_any(const LoadedScene& loaded, const Expect& expect, SolverKind solver, ExpectOutcome outcome,
+                     const CheckOptions& opt, Progress& progress) {
   ScalarKind scalar = ScalarKind::Double;
   if (!parse_scalar_kind(opt.scalar, scalar)) throw std::invalid_argument("unknown scalar type " + opt.scalar);
   switch (scalar) {
-    case ScalarKind::Float: return check_scene<float>(loaded, opt, progress);
-    case ScalarKind::Double: return check_scene<double>(loaded, opt, progress);
-    case ScalarKind::LongDouble: return check_scene<long double>(loaded, opt, progress);
-    case ScalarKind::QuadPrecision: return check_scene<Quad>(loaded, opt, progress);
+    case ScalarKind::Float: return check_scene<float>(loaded, expect, solver, std::move(outcome), opt, progress);
+    case ScalarKind::Double: return check_scene<double>(loaded, expect, solver, std::move(outcome), opt, progress);
+    case ScalarKind::LongDouble:
+      return check_scene<long double>(loaded, expect, solver, std::move(outcome), opt, progress);
+    case ScalarKind::QuadPrecision: return check_scene<Quad>(loaded, expect, solver, std::move(outcome), opt, progress);
   }
   throw std::logic_error("unknown scalar kind");
 }
 
-// One scene: its exit code (0, or the first failure's), its JSON.
-int check_file(const std::string& file, const CheckOptions& opt, Progress& progress, std::ofstream& json,
-               bool& first_json) {
+// A run's exit code: a contrast run never fails; an unexpected storm keeps its own code.
+int exit_code_of(const SceneCheck& c) {
+  if (c.expect.enforcement == Enforcement::Contrast || failure_reasons(c).empty()) return kExitOk;
+  const bool storm = c.stop_reason == StopReason::EventStorm && !c.expect.storm_expected;
+  return storm ? kExitStorm : kExitCheckFailed;
+}
+
+// What is printed and written across scenes.
+struct Output {
+  bool summaries = true;
+  std::ofstream json;
+  bool first_json = true;
+  std::vector<TableRow> table;
+};
+
+void report_run(const std::string& file, const LoadedScene& loaded, const SceneCheck& c, Output& out) {
+  if (out.summaries) print_summary(c, loaded.scene);
+  if (out.json.is_open()) {
+    out.json << (out.first_json ? "\n" : ",\n");
+    write_json(out.json, c, loaded.scene);
+    out.first_json = false;
+  }
+  if (c.expect.enforcement == Enforcement::Full) {
+    for (const ExpectFailure& f : c.expect.failures) fmt::print(stderr, "pge check: {}: {}: {}\n", file, c.solver, f.text);
+  } else if (c.expect.enforcement != Enforcement::Contrast && c.stop_reason == StopReason::EventStorm &&
+             !c.expect.storm_expected) {
+    fmt::print(stderr, "pge check: {}: {}: the run stopped on an event storm at t = {:.17g} (bodies {})\n", file, c.solver,
+               c.time, pair_text(loaded.scene, c.storm_a, c.storm_b));
+  }
+}
+
+// One scene, with one solver or all three: its exit code (0, or the first failure's).
+int check_file(const std::string& file, const CheckOptions& opt, const std::string& label, Output& out) {
+  TableRow* row = nullptr;
+  if (opt.table) {
+    const std::filesystem::path path(file);
+    out.table.push_back({path.parent_path().filename().string(), path.stem().string(), {}});
+    row = &out.table.back();
+  }
+  const auto fail_row = [row](const std::string& why) {
+    if (row)
+      for (TableCell& cell : row->cells) cell.result = why;
+  };
   LoadedScene loaded;
+  Expect expect;
   try {
     loaded = read_scene_file(file);
+    expect = parse_expect(loaded);
   } catch (const SceneError& e) {
     fmt::print(stderr, "pge check: {}\n", e.what());
+    fail_row("error: bad scene file");
     return kExitBadScene;
   }
-  try {
-    const SceneCheck c = check_any(loaded, opt, progress);
-    if (!opt.quiet) print_summary(c, loaded.scene);
-    if (json.is_open()) {
-      json << (first_json ? "\n" : ",\n");
-      write_json(json, c, loaded.scene);
-      first_json = false;
+  std::vector<SolverKind> solvers{loaded.scene.run.solver};
+  if (opt.all_solvers) solvers.assign(kAllSolvers.begin(), kAllSolvers.end());
+  if (!opt.solver.empty()) parse_solver_kind(opt.solver, solvers[0]);
+  const std::string deviated = deviation(loaded.scene, opt);
+  int exit_code = kExitOk;
+  for (const SolverKind solver : solvers) {
+    Progress progress{opt.progress, solvers.size() > 1 ? fmt::format("{} ({})", label, solver_name(solver)) : label};
+    try {
+      const SceneCheck c = check_any(loaded, expect, solver, plan(expect, solver, solvers.size() > 1, deviated), opt, progress);
+      report_run(file, loaded, c, out);
+      if (row) row->cells[static_cast<std::size_t>(solver)] = table_cell(c);
+      if (exit_code == kExitOk) exit_code = exit_code_of(c);
+    } catch (const UnsupportedScene& e) {
+      progress.clear();
+      fmt::print(stderr, "pge check: {}: {}\n", file, e.what());
+      fail_row("error: unsupported");
+      return kExitUnsupported;
+    } catch (const std::invalid_argument& e) {
+      progress.clear();
+      fmt::print(stderr, "pge check: {}: {}\n", file, e.what());
+      fail_row("error: invalid scene");
+      return kExitBadScene;
     }
-    if (c.stop == stop_reason_name(StopReason::EventStorm)) {
-      fmt::print(stderr, "pge check: {}: the run stopped on an event storm at t = {:.17g}\n", file, c.time);
-      return kExitStorm;
-    }
-    return has_failure(c) ? kExitCheckFailed : kExitOk;
-  } catch (const UnsupportedScene& e) {
-    progress.clear();
-    fmt::print(stderr, "pge check: {}: {}\n", file, e.what());
-    return kExitUnsupported;
-  } catch (const std::invalid_argument& e) {
-    progress.clear();
-    fmt::print(stderr, "pge check: {}: {}\n", file, e.what());
-    return kExitBadScene;
   }
+  return exit_code;
 }
 
 }  // namespace
@@ -131,28 +257,40 @@ int check_command(const CheckOptions& opt) {
     fmt::print(stderr, "pge check: {}\n", e.what());
     return kExitBadScene;
   }
-  std::ofstream json;
+  Output out;
+  out.summaries = !opt.quiet && !(opt.table && opt.table_out.empty());
   if (!opt.json.empty()) {
-    json.open(opt.json);
-    if (!json) {
+    out.json.open(opt.json);
+    if (!out.json) {
       fmt::print(stderr, "pge check: cannot write {}\n", opt.json);
       return kExitOutput;
     }
-    json << "{\"format\":\"pge-check/1\",\"scenes\":[";
+    out.json << "{\"format\":\"pge-check/1\",\"scenes\":[";
   }
   int exit_code = kExitOk;
-  bool first_json = true;
   for (std::size_t k = 0; k < files.size(); ++k) {
-    Progress progress{opt.progress, files.size() > 1 ? fmt::format("[{}/{}] {}", k + 1, files.size(), files[k]) : files[k]};
-    const int code = check_file(files[k], opt, progress, json, first_json);
+    const std::string label = files.size() > 1 ? fmt::format("[{}/{}] {}", k + 1, files.size(), files[k]) : files[k];
+    const int code = check_file(files[k], opt, label, out);
     if (exit_code == kExitOk) exit_code = code;
   }
-  if (json.is_open()) {
-    json << "\n]}\n";
-    json.close();
-    if (!json) {
-      fmt::print(stderr, "pge check: error writing {}\n", opt.json);
-      if (exit_code == kExitOk) exit_code = kExitOutput;
+  const auto output_failed = [&exit_code](const std::string& what) {
+    fmt::print(stderr, "pge check: error writing {}\n", what);
+    if (exit_code == kExitOk) exit_code = kExitOutput;
+  };
+  if (out.json.is_open()) {
+    out.json << "\n]}\n";
+    out.json.close();
+    if (!out.json) output_failed(opt.json);
+  }
+  if (opt.table) {
+    if (opt.table_out.empty()) {
+      write_table(std::cout, out.table);
+      std::cout.flush();
+    } else {
+      std::ofstream table(opt.table_out);
+      write_table(table, out.table);
+      table.close();
+      if (!table) output_failed(opt.table_out);
     }
   }
   return exit_code;

@@ -1,4 +1,5 @@
-// `pge check`: run the engine on scenes and judge every event against the exact oracle.
+// `pge check`: run the engine on scenes, judge every event against the exact oracle, and hold
+// each run to its scene's expect block (fixtures/README.md, "Expectations").
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,9 @@ struct CheckOptions {
   std::uint64_t max_events = 0;      // 0: each scene's run.max_events
   std::string scalar = "double";     // float, double, long-double, quad
   std::string solver;                // fast, robust, certified; empty: each scene's run.solver
+  bool all_solvers = false;          // run each scene with fast, robust and certified
+  bool table = false;                // a Markdown table, one row per scene (implies all_solvers)
+  std::string table_out;             // write the table to this file; empty: stdout, instead of the summaries
   std::string json;                  // summaries and per-event verdicts as one JSON document
   bool no_filter = false;            // solve every pair exactly (slow; same verdicts)
   bool quiet = false;                // no summary on stdout

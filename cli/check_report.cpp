@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pge::cli {
 namespace {
@@ -62,10 +63,6 @@ long long median(std::vector<long long> v) {
   return v[v.size() / 2];
 }
 
-std::string pair_text(const Scene& s, BodyIndex a, BodyIndex b) {
-  return fmt::format("\"{}\"-\"{}\"", id_of(s, a), id_of(s, b));
-}
-
 std::string features_text(const oracle::FeaturePair& f) {
   return fmt::format("{} [{}, {}]", contact_kind_name(f.contact), f.feature_a, f.feature_b);
 }
@@ -90,6 +87,44 @@ void print_conservation(const Extremes& x) {
                x.worst_momentum->momentum_change, x.worst_momentum->momentum_relative, x.two_moving);
 }
 
+void print_totals(const SceneCheck& c) {
+  fmt::print("  engine, start -> end: energy {:.17g} -> {:.17g} (relative change {:.3g}); momentum ({:.17g}, {:.17g}) -> "
+             "({:.17g}, {:.17g}) (relative drift {:.3g}); largest overlap at a contact {:.3g} of the contact distance\n",
+             c.energy_start, c.energy_end, energy_relative_change(c), c.momentum_start.x, c.momentum_start.y,
+             c.momentum_end.x, c.momentum_end.y, momentum_relative_drift(c), c.largest_contact_overlap);
+}
+
+std::string_view enforcement_name(Enforcement e) {
+  switch (e) {
+    case Enforcement::None: return "none";
+    case Enforcement::Full: return "full";
+    case Enforcement::Verdicts: return "verdicts";
+    case Enforcement::Contrast: return "contrast";
+  }
+  return "?";
+}
+
+void print_expectations(const ExpectOutcome& o) {
+  switch (o.enforcement) {
+    case Enforcement::None: return;
+    case Enforcement::Verdicts: fmt::print("  expectations: not checked: {}\n", o.why); return;
+    case Enforcement::Full:
+    case Enforcement::Contrast: break;
+  }
+  const bool contrast = o.enforcement == Enforcement::Contrast;
+  if (!o.evaluated) {
+    fmt::print("  not enforced: {}\n", o.why);
+    return;
+  }
+  const std::string head = contrast ? fmt::format("expectations (contrast, not enforced: {})", o.why) : "expectations";
+  if (o.failures.empty()) {
+    fmt::print("  {}: {} checked, all hold\n", head, o.checked);
+    return;
+  }
+  fmt::print("  {}: {} checked, {} {}:\n", head, o.checked, o.failures.size(), contrast ? "would fail" : "FAILED");
+  for (const ExpectFailure& f : o.failures) fmt::print("    {}: {}\n", f.key, f.text);
+}
+
 void print_oracle(const SceneCheck& c) {
   const auto& o = c.oracle;
   const double share = o.pairs_examined ? 100.0 * static_cast<double>(o.pairs_filtered) / static_cast<double>(o.pairs_examined) : 0;
@@ -100,6 +135,10 @@ void print_oracle(const SceneCheck& c) {
 }
 
 }  // namespace
+
+std::string pair_text(const Scene& s, BodyIndex a, BodyIndex b) {
+  return fmt::format("\"{}\"-\"{}\"", id_of(s, a), id_of(s, b));
+}
 
 EventRecord make_record(std::uint64_t index, double time, const oracle::ExactEvent& e, const oracle::Judgement& j) {
   EventRecord r;
@@ -135,6 +174,7 @@ std::array<std::uint64_t, oracle::kVerdictCount> verdict_counts(const SceneCheck
   std::array<std::uint64_t, oracle::kVerdictCount> n{};
   for (const EventRecord& r : c.events) ++n[static_cast<std::size_t>(r.verdict)];
   if (c.end.miss) ++n[static_cast<std::size_t>(oracle::Verdict::Miss)];
+  n[static_cast<std::size_t>(oracle::Verdict::Miss)] += c.oracle.misses_between_events;  // before a slide off a face
   return n;
 }
 
@@ -143,35 +183,79 @@ bool has_failure(const SceneCheck& c) {
   return n[static_cast<std::size_t>(oracle::Verdict::Miss)] + n[static_cast<std::size_t>(oracle::Verdict::Phantom)] > 0;
 }
 
-void print_summary(const SceneCheck& c, const Scene& s) {
+long long largest_abs_ulps(const SceneCheck& c) {
   const Extremes x = extremes_of(c);
-  fmt::print("scene {} (\"{}\"): {} bodies, scalar {}, solver {}\n", c.path, c.name, c.bodies, c.scalar, c.solver);
-  fmt::print("  stopped: {} at t = {:.17g} (horizon {:.17g})\n", c.stop, c.time, c.horizon);
-  std::string end = "not checked (the run stopped before its horizon)";
-  if (c.end_checked && !c.end.miss) end = "no contact left before the horizon";
-  if (c.end.miss && !c.end.next.pairs.empty())
-    end = fmt::format("MISS: pair {} touches at {} before the horizon",
-                      pair_text(s, c.end.next.pairs[0].a, c.end.next.pairs[0].b), c.end.next.time->decimal(20));
-  fmt::print("  judged: {} events ({} without impulse, {} by the overlap rule); end: {}\n", c.events.size(), x.no_impulse,
-             x.overlap_rule, end);
-  const auto n = verdict_counts(c);
-  fmt::print("  verdicts:");
-  for (int v = 0; v < oracle::kVerdictCount; ++v)
-    fmt::print("{} {} {}", v ? "," : "", oracle::verdict_name(static_cast<oracle::Verdict>(v)), n[static_cast<std::size_t>(v)]);
-  fmt::print("\n");
-  if (x.worst_ulps)
-    fmt::print("  time error: median {} ulps, largest {} ulps (event {}, pair {}), largest relative {:.3g}; {} events "
-               "with other features than the oracle's\n",
-               median(x.abs_ulps), x.worst_ulps->ulps, x.worst_ulps->index, pair_text(s, x.worst_ulps->a, x.worst_ulps->b),
-               x.worst_relative, x.mismatches);
-  print_conservation(x);
-  if (x.worst_overlap) {
-    const EventRecord& w = *x.worst_overlap;
-    const double depth = std::max(0.0, -w.gap);
-    fmt::print("  overlap: largest {:.3g}{} at event {} (exact contact function at the engine's time)\n", depth,
-               w.contact_distance > 0 ? fmt::format(" (relative {:.3g})", depth / w.contact_distance) : "", w.index);
+  return x.worst_ulps ? std::llabs(x.worst_ulps->ulps) : 0;
+}
+
+namespace {
+
+// change / scale, where a change from 0 is infinitely large.
+double relative(double change, double scale) {
+  if (scale != 0) return change / scale;
+  return change == 0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), change);
+}
+
+}  // namespace
+
+double energy_relative_change(const SceneCheck& c) {
+  return relative(c.energy_end - c.energy_start, std::abs(c.energy_start));
+}
+
+double momentum_relative_drift(const SceneCheck& c) {
+  const Vec2d d = c.momentum_end - c.momentum_start;
+  return relative(std::hypot(d.x, d.y), std::hypot(c.momentum_start.x, c.momentum_start.y));
+}
+
+std::vector<std::string> failure_reasons(const SceneCheck& c) {
+  std::vector<std::string> why;
+  if (c.expect.evaluated) {
+    for (const ExpectFailure& f : c.expect.failures) why.push_back(f.key == "stop" ? "stop (" + c.stop + ")" : f.key);
+    return why;
   }
-  print_oracle(c);
+  if (c.stop_reason == StopReason::EventStorm && !c.expect.storm_expected) why.push_back(c.stop);
+  const auto n = verdict_counts(c);
+  for (const oracle::Verdict v : {oracle::Verdict::Miss, oracle::Verdict::Phantom})
+    if (const auto k = n[static_cast<std::size_t>(v)]; k > 0) why.push_back(fmt::format("{} {}", k, oracle::verdict_name(v)));
+  return why;
+}
+
+void print_summary(const SceneCheck& c, const Scene& s) {
+  const Extremes x = extremes_of(c);  // empty when not judged
+  fmt::print("scene {} (\"{}\"): {} bodies, scalar {}, solver {}\n", c.path, c.name, c.bodies, c.scalar, c.solver);
+  fmt::print("  stopped: {} at t = {:.17g} (horizon {:.17g}){}\n", c.stop, c.time, c.horizon,
+             c.storm_a == kNoBody ? "" : ", bodies " + pair_text(s, c.storm_a, c.storm_b));
+  if (c.judged) {
+    std::string end = "not checked (the run stopped before its horizon)";
+    if (c.end_checked && !c.end.miss) end = "no contact left before the horizon";
+    if (c.end.miss && !c.end.next.pairs.empty())
+      end = fmt::format("MISS: pair {} touches at {} before the horizon",
+                        pair_text(s, c.end.next.pairs[0].a, c.end.next.pairs[0].b), c.end.next.time->decimal(20));
+    fmt::print("  judged: {} events ({} without impulse, {} by the overlap rule); end: {}\n", c.events.size(), x.no_impulse,
+               x.overlap_rule, end);
+    const auto n = verdict_counts(c);
+    fmt::print("  verdicts:");
+    for (int v = 0; v < oracle::kVerdictCount; ++v)
+      fmt::print("{} {} {}", v ? "," : "", oracle::verdict_name(static_cast<oracle::Verdict>(v)), n[static_cast<std::size_t>(v)]);
+    fmt::print("\n");
+    if (x.worst_ulps)
+      fmt::print("  time error: median {} ulps, largest {} ulps (event {}, pair {}), largest relative {:.3g}; {} events "
+                 "with other features than the oracle's\n",
+                 median(x.abs_ulps), x.worst_ulps->ulps, x.worst_ulps->index, pair_text(s, x.worst_ulps->a, x.worst_ulps->b),
+                 x.worst_relative, x.mismatches);
+    print_conservation(x);
+    if (x.worst_overlap) {
+      const EventRecord& w = *x.worst_overlap;
+      const double depth = std::max(0.0, -w.gap);
+      fmt::print("  overlap: largest {:.3g}{} at event {} (exact contact function at the engine's time)\n", depth,
+                 w.contact_distance > 0 ? fmt::format(" (relative {:.3g})", depth / w.contact_distance) : "", w.index);
+    }
+    print_oracle(c);
+  } else {
+    fmt::print("  events: {} contact events, not judged (the expect block says \"oracle\": false)\n", c.contact_events);
+  }
+  print_totals(c);
+  print_expectations(c.expect);
   std::size_t shown = 0;
   for (const EventRecord& r : c.events)
     if (oracle::is_failure(r.verdict) && shown++ < kFailuresShown) print_failure(r, s);
@@ -188,6 +272,7 @@ nlohmann::json summary_json(const SceneCheck& c, const Scene& s) {
   j["scalar"] = c.scalar;
   j["solver"] = c.solver;
   j["stop"] = c.stop;
+  if (c.storm_a != kNoBody) j["storm"] = {id_of(s, c.storm_a), id_of(s, c.storm_b)};
   j["time"] = c.time;
   j["horizon"] = c.horizon;
   const auto n = verdict_counts(c);
@@ -204,6 +289,21 @@ nlohmann::json summary_json(const SceneCheck& c, const Scene& s) {
   j["largest_energy_change"] = x.worst_energy ? x.worst_energy->energy_change : 0.0;
   j["largest_momentum_change"] = x.worst_momentum ? x.worst_momentum->momentum_change : 0.0;
   j["largest_overlap"] = x.worst_overlap ? std::max(0.0, -x.worst_overlap->gap) : 0.0;
+  j["judged"] = c.judged;
+  j["contact_events"] = c.contact_events;
+  j["energy_start"] = c.energy_start;
+  j["energy_end"] = c.energy_end;
+  j["momentum_start"] = {c.momentum_start.x, c.momentum_start.y};
+  j["momentum_end"] = {c.momentum_end.x, c.momentum_end.y};
+  j["largest_contact_overlap_relative"] = c.largest_contact_overlap;
+  nlohmann::json& e = j["expectations"];
+  e["enforcement"] = enforcement_name(c.expect.enforcement);
+  if (!c.expect.why.empty()) e["why"] = c.expect.why;
+  if (c.expect.evaluated) {
+    e["checked"] = c.expect.checked;
+    e["failures"] = nlohmann::json::array();
+    for (const ExpectFailure& f : c.expect.failures) e["failures"].push_back({{"key", f.key}, {"text", f.text}});
+  }
   j["oracle"] = {{"events", c.oracle.events},         {"seconds", c.oracle.seconds},
                  {"pairs_examined", c.oracle.pairs_examined}, {"pairs_filtered", c.oracle.pairs_filtered},
                  {"pairs_exact", c.oracle.pairs_exact}, {"features_exact", c.oracle.features_exact},
@@ -245,6 +345,71 @@ void write_json(std::ostream& out, const SceneCheck& c, const Scene& s) {
   out << head << ",\"events\":[";
   for (std::size_t k = 0; k < c.events.size(); ++k) out << (k ? ",\n" : "\n") << event_json(c.events[k], s).dump();
   out << "\n]}";
+}
+
+namespace {
+
+std::string cell_text(std::string text) {
+  for (std::size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.insert(at, "\\");
+  return text;
+}
+
+std::string brief(const std::vector<std::string>& why) {
+  return why.size() == 1 ? why[0] : fmt::format("{} (+{} more)", why[0], why.size() - 1);
+}
+
+}  // namespace
+
+TableCell table_cell(const SceneCheck& c) {
+  TableCell cell;
+  cell.events = fmt::format("{}", c.contact_events);
+  const bool timed = std::any_of(c.events.begin(), c.events.end(), [](const EventRecord& r) { return r.has_exact_time; });
+  // A phantom's pair may touch only much later: millions of ulps and more read better rounded.
+  constexpr long long kExactDigitsShown = 1000000;
+  const long long ulps = largest_abs_ulps(c);
+  cell.ulps = !timed ? "-" : ulps < kExactDigitsShown ? fmt::format("{}", ulps) : fmt::format("{:.1e}", static_cast<double>(ulps));
+  cell.drift = fmt::format("{:.2g}", std::abs(energy_relative_change(c)));
+  const std::vector<std::string> why = failure_reasons(c);
+  if (c.expect.enforcement == Enforcement::Contrast)
+    cell.result = fmt::format("n/a (contrast: {})", why.empty() ? "pass" : "fails " + brief(why));
+  else
+    cell.result = why.empty() ? "pass" : "FAIL: " + brief(why);
+  return cell;
+}
+
+void write_table(std::ostream& out, const std::vector<TableRow>& rows) {
+  // Columns padded to their widest cell, so that the raw text reads as a table too.
+  std::vector<std::vector<std::string>> lines;
+  lines.push_back({"family", "scene"});
+  for (const SolverKind s : {SolverKind::Fast, SolverKind::Robust, SolverKind::Certified})
+    for (const char* what : {" events", " ulps", " drift", " result"}) lines[0].push_back(std::string(solver_name(s)) + what);
+  for (const TableRow& row : rows) {
+    std::vector<std::string> line{cell_text(row.family), "`" + cell_text(row.scene) + "`"};
+    for (const TableCell& cell : row.cells)
+      for (const std::string* text : {&cell.events, &cell.ulps, &cell.drift, &cell.result})
+        line.push_back(cell.result.empty() ? "" : cell_text(*text));
+    lines.push_back(std::move(line));
+  }
+  std::vector<std::size_t> width(lines[0].size(), 3);
+  for (const auto& line : lines)
+    for (std::size_t k = 0; k < line.size(); ++k) width[k] = std::max(width[k], line[k].size());
+  const auto is_number = [](std::size_t k) { return k >= 2 && (k - 2) % 4 != 3; };
+  const auto print_line = [&](const std::vector<std::string>& line) {
+    out << '|';
+    for (std::size_t k = 0; k < line.size(); ++k)
+      out << ' ' << (is_number(k) ? fmt::format("{:>{}}", line[k], width[k]) : fmt::format("{:<{}}", line[k], width[k]))
+          << " |";
+    out << '\n';
+  };
+  print_line(lines[0]);
+  out << '|';
+  for (std::size_t k = 0; k < width.size(); ++k)
+    out << ' ' << std::string(width[k] - (is_number(k) ? 1 : 0), '-') << (is_number(k) ? ":" : "") << " |";
+  out << '\n';
+  for (std::size_t r = 1; r < lines.size(); ++r) print_line(lines[r]);
+  out << "\nevents: contact events (collisions and zero-impulse contacts); ulps: largest time error against the "
+         "exact oracle (-: not judged); drift: |E_end - E_start| / |E_start| by the engine; n/a: not enforced, shown "
+         "for contrast.\n";
 }
 
 }  // namespace pge::cli

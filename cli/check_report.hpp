@@ -1,8 +1,11 @@
 // What `pge check` records per event and how it summarises a scene (text and JSON).
 #pragma once
 
+#include "expect.hpp"
+
 #include "pge/oracle.hpp"
 #include "pge/scene.hpp"
+#include "pge/world.hpp"
 
 #include <array>
 #include <cstdint>
@@ -33,13 +36,29 @@ struct EventRecord {
   double gap = 0, contact_distance = 0;
 };
 
+// Two bodies as "\"a\"-\"b\"" ("?" for an index the scene does not have).
+std::string pair_text(const Scene& s, BodyIndex a, BodyIndex b);
+
 EventRecord make_record(std::uint64_t index, double time, const oracle::ExactEvent& e, const oracle::Judgement& j);
 
 struct SceneCheck {
   std::string path, name, scalar, solver, stop;
+  StopReason stop_reason = StopReason::ReachedUntil;
+  BodyIndex storm_a = kNoBody, storm_b = kNoBody;  // an event storm's two bodies
   std::size_t bodies = 0;
   double time = 0, horizon = 0;
-  std::vector<EventRecord> events;
+  bool judged = true;  // false: the engine ran without the oracle (the expect block's "oracle": false)
+  std::vector<EventRecord> events;  // the judged events (none when not judged)
+  std::uint64_t contact_events = 0;  // collisions and zero-impulse contacts, judged or not
+  // Measured by the engine before the first step and at the end: kinetic + potential energy,
+  // momentum of the moving bodies, and every body's state at the end.
+  double energy_start = 0, energy_end = 0;
+  Vec2d momentum_start, momentum_end;
+  std::vector<BodySnapshot<double>> final_states;
+  // The engine's largest overlap at a contact as a fraction of the contact distance
+  // (World::largest_contact_overlap: the contact deepest in rounding units).
+  double largest_contact_overlap = 0;
+  ExpectOutcome expect;
   bool end_checked = false;  // the run reached its horizon and the oracle looked for leftovers
   oracle::EndJudgement end;
   oracle::RefereeStats oracle;
@@ -50,10 +69,32 @@ struct SceneCheck {
 // Counts of each verdict, the end check's miss included.
 std::array<std::uint64_t, oracle::kVerdictCount> verdict_counts(const SceneCheck& c);
 bool has_failure(const SceneCheck& c);
+// The largest |time error| in ulps over the judged events (0 when none has an exact time).
+long long largest_abs_ulps(const SceneCheck& c);
+// (E_end - E_start) / |E_start|, signed; 0 when both are 0, infinite when only E_start is 0.
+double energy_relative_change(const SceneCheck& c);
+// |P_end - P_start| / |P_start|, with the same conventions.
+double momentum_relative_drift(const SceneCheck& c);
+
+// Why the run fails (for a contrast run: would fail), as short reasons ("collisions[0]",
+// "stop (event-storm)", "2 miss"); empty when it passes.
+std::vector<std::string> failure_reasons(const SceneCheck& c);
 
 void print_summary(const SceneCheck& c, const Scene& scene);
 // The scene's summary and every event's verdict as one JSON object, events streamed one per
 // line (a long run's events never sit in memory as JSON).
 void write_json(std::ostream& out, const SceneCheck& c, const Scene& scene);
+
+// `pge check --table`: one row per scene, a cell per solver (fast, robust, certified).
+struct TableCell {
+  std::string events, ulps, drift;
+  std::string result;  // pass, FAIL: reason, n/a (contrast: ...), error: ...; empty: not run
+};
+struct TableRow {
+  std::string family, scene;
+  std::array<TableCell, 3> cells;  // indexed by SolverKind
+};
+TableCell table_cell(const SceneCheck& c);
+void write_table(std::ostream& out, const std::vector<TableRow>& rows);
 
 }  // namespace pge::cli

@@ -10,8 +10,9 @@
 
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <exception>
+#include <sstream>
+#include <string>
 #include <unistd.h>
 
 namespace {
@@ -61,18 +62,43 @@ int main(int argc, char** argv) {
 
   CheckOptions check;
   CLI::App* check_cmd = app.add_subcommand(
-      "check", "Run the engine on scenes and judge every event against the exact oracle; exit 7 on a miss or phantom.");
-  check_cmd->add_option("scenes", check.scenes, "Scene files (pge-scene/1 JSON) or directories of them")->required();
+      "check",
+      "Run the engine on scenes, judge every event against the exact oracle and hold each run to its scene's expect "
+      "block; exit 7 on a miss, a phantom or a failed expectation.");
+  check_cmd->footer(std::string(
+      "Expectations (the scene's \"expect\" block, fixtures/README.md): enforced when the run's solver is among\n"
+      "  the block's \"solvers\" (default robust, certified) and the run is the scene's own (no --until or\n"
+      "  --max-events, scalar double); otherwise a listed solver's run is judged by the oracle only, and an\n"
+      "  unlisted solver's run is shown for contrast and never fails. Each failed expectation is one line on\n"
+      "  stderr, \"pge check: FILE: SOLVER: expected ..., measured ...\" (exit 7); a storm the block expects\n"
+      "  (\"stop\": \"event-storm\") is no failure; \"oracle\": false runs the engine alone (faster); a malformed\n"
+      "  block is a bad scene (exit 3).\n") + kExitCodeHelp);
+  check_cmd->add_option("scenes", check.scenes, "Scene files (pge-scene/1 JSON) or directories of them (searched recursively)")
+      ->required();
   check_cmd->add_option("--until", check.until, "Simulated seconds (default: each scene's run.until)")->check(kPositive);
   check_cmd->add_option("--max-events", check.max_events, "Stop after this many collisions (default: the scene's run.max_events)")
       ->check(kPositive);
   check_cmd->add_option("--scalar", check.scalar, "Number type: float, double, long-double, quad")
       ->check(CLI::IsMember({"float", "double", "long-double", "quad"}));
-  check_cmd->add_option("--solver", check.solver, "Root solver: fast, robust, certified (default: each scene's run.solver)")
-      ->check(CLI::IsMember({"fast", "robust", "certified"}));
+  CLI::Option* check_solver =
+      check_cmd->add_option("--solver", check.solver, "Root solver: fast, robust, certified (default: each scene's run.solver)")
+          ->check(CLI::IsMember({"fast", "robust", "certified"}));
+  CLI::Option* check_all = check_cmd->add_flag(
+      "--all-solvers", check.all_solvers,
+      "Run each scene with fast, robust and certified; the expect block holds for its solvers, the others are shown "
+      "for contrast (without a block: robust and certified are enforced, fast is contrast)");
+  CLI::Option* check_table = check_cmd->add_flag(
+      "--table", check.table,
+      "Print a Markdown table instead of the summaries, one row per scene: family (parent folder), scene, and per "
+      "solver the contact events, largest time error in ulps, relative energy drift and result (pass, FAIL: reason, "
+      "n/a for contrast); implies --all-solvers");
+  CLI::Option* check_table_out =
+      check_cmd->add_option("--table-out", check.table_out, "Write the --table table to FILE (implies --table; the summaries still print)")
+          ->type_name("FILE");
+  check_solver->excludes(check_all)->excludes(check_table)->excludes(check_table_out);
   check_cmd->add_option("--json", check.json, "Write the summaries and every event's verdict to FILE (JSON)");
   check_cmd->add_flag("--no-filter", check.no_filter, "Solve every pair exactly, without the interval filter (slow; same verdicts)");
-  check_cmd->add_flag("--quiet,-q", check.quiet, "Print no summary (errors still go to stderr)");
+  check_cmd->add_flag("--quiet,-q", check.quiet, "Print no summary (errors and failed expectations still go to stderr)");
   check_cmd->add_flag("--progress", check.progress, "Show progress on stderr (default: only when stderr is a terminal)");
 
   FuzzOptions fuzz;
@@ -90,7 +116,7 @@ int main(int argc, char** argv) {
   fuzz_cmd->add_option("--max-failures", fuzz.max_failures, "Stop after this many failures")->check(CLI::Range(1u, 100000u));
   bool no_polygons = false;
   fuzz_cmd->add_flag("--no-polygons", no_polygons, "Generate scenes of circles and segments only");
-  fuzz_cmd->add_flag("--storms-fail", fuzz.storms_fail, "Count event storms (resting contacts) as failures");
+  fuzz_cmd->add_flag("--storms-fail", fuzz.storms_fail, "Count event storms (today: resting contact between moving bodies) as failures");
   bool no_oracle = false;
   fuzz_cmd->add_flag("--no-oracle", no_oracle,
                      "Check the invariants only, without judging every event by the exact oracle (faster); the "
@@ -138,6 +164,8 @@ int main(int argc, char** argv) {
       return run_command(run);
     }
     if (check_cmd->parsed()) {
+      if (!check.table_out.empty()) check.table = true;
+      if (check.table) check.all_solvers = true;
       if (!check.progress) check.progress = isatty(fileno(stderr)) != 0 && !check.quiet;
       return check_command(check);
     }

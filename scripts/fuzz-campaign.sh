@@ -9,8 +9,10 @@ set -uo pipefail
 
 usage() {
   cat <<'USAGE'
-Usage: scripts/fuzz-campaign.sh [--seconds S] [--build-dir DIR] [--jobs N] [--no-build] [--parallel]
+Usage: scripts/fuzz-campaign.sh [--seconds S] [--timeout S] [--build-dir DIR] [--jobs N] [--no-build] [--parallel]
   --seconds S      seconds per target (default: 120)
+  --timeout S      wall seconds one input may take before it counts as a hang (default: 60; libFuzzer's
+                   clock is wall time, so on a loaded machine a slow input can pass a short limit)
   --build-dir DIR  clang build directory (default: build-fuzz); configured if needed
   --jobs N         parallel build jobs (default: 1)
   --no-build       use the targets already built in DIR
@@ -25,6 +27,7 @@ die() { echo "fuzz-campaign.sh: $*" >&2; exit 2; }
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=120
+timeout=60
 parallel=0
 build="$root/build-fuzz"
 jobs=1
@@ -34,6 +37,7 @@ while [[ $# -gt 0 ]]; do
     --seconds) [[ $# -ge 2 && "$2" =~ ^[1-9][0-9]*$ ]] || die "--seconds needs a positive integer"; seconds=$2; shift 2 ;;
     --build-dir) [[ $# -ge 2 ]] || die "--build-dir needs a value"
                  case "$2" in /*) build=$2 ;; *) build="$PWD/$2" ;; esac; shift 2 ;;
+    --timeout) [[ $# -ge 2 && "$2" =~ ^[1-9][0-9]*$ ]] || die "--timeout needs a positive integer"; timeout=$2; shift 2 ;;
     --jobs) [[ $# -ge 2 && "$2" =~ ^[1-9][0-9]*$ ]] || die "--jobs needs a positive integer"; jobs=$2; shift 2 ;;
     --no-build) do_build=0; shift ;;
     --parallel) parallel=1; shift ;;
@@ -71,8 +75,10 @@ run_target() {
   local extra=()
   [[ $target == fuzz_reader ]] && extra+=("-dict=$root/fuzz/reader.dict")
   echo "== $target for ${seconds}s (log: $log)"
-  # -timeout: one input running longer is a hang; -rss_limit_mb: memory blow-up is a failure.
-  nice -n 10 "$build/fuzz/$target" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 \
+  # -timeout: one input running longer is a hang; -rss_limit_mb: memory blow-up is a failure;
+  # -report_slow_units: inputs over 10 s are kept as slow-unit-* (reported, not failures).
+  nice -n 10 "$build/fuzz/$target" "$corpus" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=4096 \
+      -report_slow_units=10 \
       -print_final_stats=1 -artifact_prefix="$artifacts/" "${extra[@]}" >"$log" 2>&1
   echo $? >"$out/$target.exit"
 }

@@ -22,6 +22,7 @@ inline ExactBody moving_circle(double r, Vec2d p, Vec2d v, double mass = 1, Vec2
   b.mass = Dyadic::from(mass);
   b.restitution = Dyadic(1);
   b.motion = motion(p, v, acc);
+  b.field_acc = b.motion.acc;  // not resting: the path's acceleration is the field's
   return b;
 }
 
@@ -50,6 +51,7 @@ inline ExactBody moving_polygon(std::vector<Vec2d> local, Vec2d p, Vec2d v, doub
   b.restitution = Dyadic(1);
   for (Vec2d q : local) b.local.push_back(ev(q));
   b.motion = motion(p, v, acc);
+  b.field_acc = b.motion.acc;  // not resting: the path's acceleration is the field's
   return b;
 }
 

@@ -62,6 +62,8 @@ Tally judge_every_event(const Scene& scene, SolverKind solver) {
     if (j.verdict == oracle::Verdict::Misorder) ++tally.misorders;
   });
   world.run();
+  if (tally.problem.empty() && referee.stats().misses_between_events > 0)
+    tally.problem = std::string(solver_name(solver)) + ": a contact before a body slid off a face was never processed";
   if (tally.problem.empty() && world.stop_reason() == StopReason::ReachedUntil && referee.judge_end().miss)
     tally.problem = std::string(solver_name(solver)) + ": a contact before the horizon was never processed";
   return tally;

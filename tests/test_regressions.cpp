@@ -1,7 +1,10 @@
 // Every scene in fixtures/regressions/ reproduces a bug that was found and fixed. Each must run
 // without breaking the engine's invariants: the overlap bound after every event, finite states,
-// and no crash or hang (the run is bounded by the scene's until and max_events).
+// momentum across every collision and kinetic energy across every elastic one (the checks
+// `pge fuzz` and the libFuzzer targets apply, properties/invariants), and no crash or hang (the
+// run is bounded by the scene's until and max_events).
 #include "pge/constants.hpp"
+#include "pge/invariants.hpp"
 #include "pge/scene_io.hpp"
 #include "pge/world.hpp"
 
@@ -38,6 +41,16 @@ TEST_P(Regression, KeepsTheOverlapBoundAfterEveryEvent) {
   }
   const auto o = w.largest_overlap();
   EXPECT_LE(o.ulps, kOverlapBoundUlps) << "at the end, t = " << w.time();
+}
+
+TEST_P(Regression, KeepsTheEngineInvariants) {
+  const LoadedScene loaded = read_scene_file(GetParam());
+  InvariantOptions options;
+  options.solver = loaded.scene.run.solver;
+  options.storms_fail = false;  // storms are reported, not failures (resting between moving bodies)
+  const InvariantReport report = check_invariants(loaded.scene, options);
+  EXPECT_FALSE(report.failure) << failure_kind_name(report.failure->kind) << " at t = " << report.failure->time << ": "
+                               << report.failure->detail;
 }
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, Regression, ::testing::ValuesIn(regression_scenes()),

@@ -22,6 +22,9 @@ template <class T> struct Scheduled {
   BodyIndex partner = kNoBody;          // the other body of the pair, seen from the owner
   std::uint64_t partner_version = 0;    // the partner's version when this was predicted
   bool refined = false;                 // certified: time re-derived from the exact paths (refine.hpp)
+  // Not a contact: the owner, resting on the fixed body `partner`, slides off the end of that
+  // face (support slot feature_a) at `time` (resting contact, world.cpp).
+  bool leave = false;
 
   bool valid() const { return lo != kNoBody; }
 

@@ -12,7 +12,10 @@
 #include "event_heap.hpp"
 #include "refine.hpp"
 
+#include <boost/math/special_functions/next.hpp>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -25,6 +28,17 @@ namespace pge {
 template <class T> struct World<T>::Impl {
   // The fields every prediction reads come first, so that a scan over all bodies touches as
   // few cache lines as it can; the shape's outline data and the rest follow.
+  // A fixed straight face a body rests on (resting contact, DESIGN.md): the line through
+  // `origin` along the unit tangent `u`, `length` long, with unit normal `n` pointing from the
+  // face towards the resting body. The body's contact with it spans [s_lo, s_hi] along u,
+  // relative to the body's reference point (0 and 0 for a circle's centre; a polygon's lowest
+  // vertices).
+  struct Support {
+    BodyIndex body = kNoBody;
+    Vec2<T> n, origin, u;
+    T length{}, s_lo{}, s_hi{};
+  };
+
   struct Body {
     bool fixed = false;
     // Motion since t0: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2.
@@ -42,6 +56,17 @@ template <class T> struct World<T>::Impl {
     // (refine_near_top): not predicted again while both bodies keep their motions.
     BodyIndex no_contact_with = kNoBody;
     std::uint64_t no_contact_version = 0, no_contact_partner_version = 0;
+    // The field's acceleration (own + gravity); `acc` is the path's, which resting removes
+    // components from. At most two faces hold a body in 2-D (a V holds it still).
+    Vec2<T> field_acc;
+    std::array<Support, 2> support;
+    int supports = 0;
+
+    bool rests_on(BodyIndex j) const {
+      for (int k = 0; k < supports; ++k)
+        if (support[static_cast<std::size_t>(k)].body == j) return true;
+      return false;
+    }
   };
 
   struct Timer {
@@ -70,6 +95,7 @@ template <class T> struct World<T>::Impl {
   Overlap worst_contact;
   CollisionCallback on_collision;
   FrameCallback on_frame;
+  MotionCallback on_motion_change;
 
   Kinematics<T> kinematics(const Body& b, const T& t) const {
     if (b.fixed) return {b.p0, Vec2<T>{}, Vec2<T>{}};
@@ -91,6 +117,7 @@ template <class T> struct World<T>::Impl {
     const Body& b = bodies[hi];
     if (a.fixed && b.fixed) return std::nullopt;
     if (excluded(a, hi, b) || excluded(b, lo, a)) return std::nullopt;
+    if (a.rests_on(hi) || b.rests_on(lo)) return std::nullopt;  // touching all along: no event
     ++counts.predictions;
     const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
     std::optional<PredictedContact<T>> c;
@@ -274,7 +301,209 @@ template <class T> struct World<T>::Impl {
                      j, bodies[j].version};
       if (s.key_less(best)) best = s;
     }
+    const Body& b = bodies[i];
+    for (int k = 0; k < b.supports; ++k) {
+      const std::optional<T> t = leave_time(b, b.support[static_cast<std::size_t>(k)]);
+      if (!t || !(*t < best.time || !best.valid())) continue;
+      const BodyIndex f = b.support[static_cast<std::size_t>(k)].body;
+      Scheduled<T> s;
+      s.time = *t;
+      s.lo = std::min(i, f);
+      s.hi = std::max(i, f);
+      s.feature_a = static_cast<std::uint16_t>(k);
+      s.partner = f;
+      s.refined = true;  // not a contact: nothing to re-derive
+      s.leave = true;
+      best = s;
+    }
     heap.set(i, best);
+  }
+
+  // ---- Resting contact (DESIGN.md): a contact state instead of a storm of zero-time events.
+
+  // The largest normal speed w off face body f, pressed by acc_normal, that is rounding noise
+  // for the moving body m. Inelastic (restitution < 1): a rise w^2 / (2 |a_n|) below
+  // kRestHeightUlps ulps of m's coordinate scale (the rounding of its own position): a Zeno
+  // sequence of bounces ends there, after finitely many. Elastic (restitution 1): only a normal
+  // speed within kRestHeightUlps ulps of m's speed, the rounding of its velocity, so that no
+  // energy an elastic bounce would keep is taken away.
+  T rest_speed(const Body& m, BodyIndex f, const T& acc_normal) const {
+    using std::abs;
+    using std::sqrt;
+    const T ulps = T(kRestHeightUlps) * std::numeric_limits<T>::epsilon();
+    if (std::min(m.restitution, bodies[f].restitution) < T(1))
+      return sqrt(T(2) * abs(acc_normal) * ulps * m.shape.coordinate_scale(kinematics(m, now).p));
+    return ulps * sqrt(dot(m.v0, m.v0));
+  }
+
+  // The face of fixed body `f` whose outward normal is (within kRestNormalTolerance) the unit
+  // normal `n` and which holds the contact point; nothing when the contact is on a vertex only.
+  std::optional<Support> face_of(BodyIndex f, const Vec2<T>& n, const Vec2<T>& point) const {
+    const BodyShape<T>& shape = bodies[f].shape;
+    if (!shape.is_outline()) return std::nullopt;  // curved: resting on it is not a straight path
+    std::optional<Support> best;
+    T best_cos{};
+    for (std::size_t k = 0; k < shape.edges.size(); ++k) {
+      const T len = shape.edge_length[k];
+      if (!(len > T(0))) continue;
+      const Vec2<T> u = shape.edges[k] * (T(1) / len);
+      const Vec2<T> out{u.y, -u.x};  // outward for counter-clockwise outlines; a segment has both sides
+      const T c = dot(out, n);
+      if (!(c >= T(1) - T(kRestNormalTolerance))) continue;
+      const T s = dot(point - shape.world[k], u);
+      const T slack = T(kRestNormalTolerance) * len;
+      if (s < -slack || s > len + slack) continue;
+      if (best && !(c > best_cos)) continue;
+      best_cos = c;
+      best = Support{f, out, shape.world[k], u, len, T(0), T(0)};
+    }
+    return best;
+  }
+
+  // A resting body's contact interval along the face: a circle touches at its centre's
+  // projection; a polygon along its vertices lowest towards the face.
+  static void contact_span(const Body& m, Support& s) {
+    if (!m.shape.is_outline()) return;
+    T low = std::numeric_limits<T>::infinity();
+    for (const Vec2<T>& v : m.shape.local) low = std::min(low, dot(v, s.n));
+    const T tol = T(kRestVertexTolerance) * m.shape.size;
+    bool first = true;
+    for (const Vec2<T>& v : m.shape.local) {
+      if (dot(v, s.n) > low + tol) continue;
+      const T along = dot(v, s.u);
+      s.s_lo = first ? along : std::min(s.s_lo, along);
+      s.s_hi = first ? along : std::max(s.s_hi, along);
+      first = false;
+    }
+  }
+
+  // Adjacent times tried past a leave's rounded root before it is taken as it is.
+  static constexpr int kLeaveSteps = 64;
+
+  // When a resting body's contact interval leaves its face (it slides past an end), or nothing
+  // before the horizon. Along the face, s(t) = (p(t) - origin) . u is at most quadratic.
+  std::optional<T> leave_time(const Body& m, const Support& s) const {
+    const Kinematics<T> k = kinematics(m, now);
+    const T c0 = dot(k.p - s.origin, s.u), c1 = dot(k.v, s.u), c2 = dot(k.a, s.u) / T(2);
+    std::optional<T> out;
+    // Off the start: s + s_hi falls below 0. Off the end: length - (s + s_lo) falls below 0.
+    const Poly<T> polys[2] = {Poly<T>{{c0 + s.s_hi, c1, c2, T(0), T(0)}, 2},
+                              Poly<T>{{s.length - s.s_lo - c0, -c1, -c2, T(0), T(0)}, 2}};
+    for (int end = 0; end < 2; ++end) {
+      const Poly<T>& p = polys[end];
+      if (never_decreasing(p) && p.c[0] >= T(0)) continue;
+      const RootOutcome<T> r = earliest_downward_root(solver, p, T(0), horizon - now);
+      if (r.status != RootStatus::Root) continue;
+      // The first time the body is past the end as the engine rounds its position: exactly at
+      // the end it still touches the face's edge with no normal speed, a contact at the very
+      // instant it leaves, predicted again after every such graze.
+      T t = now + r.t;
+      auto past = [&](const T& at) {
+        const T along = dot(kinematics(m, at).p - s.origin, s.u);
+        return end == 0 ? along + s.s_hi < T(0) : along + s.s_lo > s.length;
+      };
+      for (int step = 0; step < kLeaveSteps && !past(t); ++step) t = boost::math::float_next(t);
+      if (!out || t < *out) out = t;
+    }
+    return out;
+  }
+
+  // Which of a body's faces hold it, from its field acceleration: the faces pressed with a
+  // non-negative reaction (at most two constraints in 2-D, tried from none to both), the path's
+  // acceleration without their components, and its velocity without its normal components.
+  // Faces that do not press are dropped.
+  void resolve_supports(Body& m) {
+    const Vec2<T> a = m.field_acc;
+    auto project = [](const Vec2<T>& x, const Vec2<T>& n) { return x - n * dot(x, n); };
+    int keep_mask = 0;
+    Vec2<T> acc = a;
+    if (m.supports == 1) {
+      if (dot(a, m.support[0].n) < T(0)) {
+        keep_mask = 1;
+        acc = project(a, m.support[0].n);
+      }
+    } else if (m.supports == 2) {
+      const Vec2<T> n0 = m.support[0].n, n1 = m.support[1].n;
+      const Vec2<T> a0 = project(a, n0), a1 = project(a, n1);
+      if (dot(a, n0) >= T(0) && dot(a, n1) >= T(0)) {
+        keep_mask = 0;
+      } else if (dot(a, n0) < T(0) && dot(a0, n1) >= T(0)) {
+        keep_mask = 1;
+        acc = a0;
+      } else if (dot(a, n1) < T(0) && dot(a1, n0) >= T(0)) {
+        keep_mask = 2;
+        acc = a1;
+      } else {
+        keep_mask = 3;  // pressed into both faces: held still
+        acc = Vec2<T>{};
+      }
+    }
+    int kept = 0;
+    for (int k = 0; k < m.supports; ++k)
+      if (keep_mask & (1 << k)) m.support[static_cast<std::size_t>(kept++)] = m.support[static_cast<std::size_t>(k)];
+    m.supports = kept;
+    m.acc = acc;
+    if (kept == 2) {
+      m.v0 = Vec2<T>{};
+    } else if (kept == 1) {
+      m.v0 = project(m.v0, m.support[0].n);
+    }
+  }
+
+  // After a collision changed moving body m's velocity (rebased to now): faces it rested on and
+  // now leaves or is pushed into by more than a rest speed stop holding it (a push into a face
+  // is the face's own contact, found at once by the next prediction); then, if the contact was
+  // with a fixed face that presses it and its bounce off that face would be rounding noise, it
+  // rests on that face too. Returns whether its supports changed.
+  bool update_rest(BodyIndex mi, BodyIndex partner, const Vec2<T>& normal_to_m, const Vec2<T>& point) {
+    Body& m = bodies[mi];
+    const int before = m.supports;
+    int kept = 0;
+    for (int k = 0; k < m.supports; ++k) {
+      const Support& s = m.support[static_cast<std::size_t>(k)];
+      using std::abs;
+      if (abs(dot(m.v0, s.n)) <= rest_speed(m, s.body, dot(m.field_acc, s.n)))
+        m.support[static_cast<std::size_t>(kept++)] = s;
+    }
+    m.supports = kept;
+    bool changed = kept != before;
+    if (bodies[partner].fixed && !m.rests_on(partner) && m.supports < 2) {
+      using std::sqrt;
+      const T len = sqrt(dot(normal_to_m, normal_to_m));
+      if (len > T(0)) {
+        if (std::optional<Support> f = face_of(partner, normal_to_m * (T(1) / len), point)) {
+          const T pressing = dot(m.acc, f->n);  // the path's: a face already held counts
+          contact_span(m, *f);
+          // Not at a face's end on the way off it (just slid off it, say): that is a graze of
+          // the face's end vertex, not a rest.
+          const std::optional<T> off = pressing < T(0) ? leave_time(m, *f) : std::nullopt;
+          if (pressing < T(0) && dot(m.v0, f->n) <= rest_speed(m, partner, pressing) && !(off && *off <= now)) {
+            m.support[static_cast<std::size_t>(m.supports++)] = *f;
+            ++counts.rests;
+            changed = true;
+          }
+        }
+      }
+    }
+    if (changed || m.supports > 0) resolve_supports(m);
+    else m.acc = m.field_acc;
+    return changed;
+  }
+
+  // A resting body slides off its face's end: the face stops holding it.
+  void leave(const Scheduled<T>& s, BodyIndex owner) {
+    Body& m = bodies[owner];
+    rebase(m, now);
+    const std::size_t k = s.feature_a;
+    if (k < static_cast<std::size_t>(m.supports) && m.support[k].body == s.partner) {
+      for (std::size_t j = k; j + 1 < static_cast<std::size_t>(m.supports); ++j) m.support[j] = m.support[j + 1];
+      --m.supports;
+    }
+    resolve_supports(m);
+    if (m.supports == 0) m.acc = m.field_acc;
+    ++m.version;
+    ++counts.leaves;
+    reschedule(owner);
   }
 
   // Initial schedule: each pair predicted once, offered to both of its bodies.
@@ -336,8 +565,16 @@ template <class T> struct World<T>::Impl {
     info.vb_before = kb.v;
 
     // Impulse along the (unnormalised) normal n: j = -(1 + e) (v_rel . n) / (n . n (1/ma + 1/mb)).
+    // An axis-aligned normal is replaced by the exact unit vector along it first: equal masses
+    // along an axis then swap their velocities exactly, as a Newton's cradle must, where
+    // v.n / n.n * n with a normal such as (0.2000000000000000111, 0) left a rounding residue that
+    // set resting balls moving (fixtures/scenes/simultaneous/cradle-10-decimal.json). Other
+    // normals keep their length: a diagonal one such as (-1, 1) is exact as it is, and its
+    // unit vector would not be.
     using std::sqrt;
-    const Vec2<T> n = g.normal;
+    Vec2<T> n = g.normal;
+    if (n.y == T(0) && n.x != T(0)) n = Vec2<T>{n.x > T(0) ? T(1) : T(-1), T(0)};
+    if (n.x == T(0) && n.y != T(0)) n = Vec2<T>{T(0), n.y > T(0) ? T(1) : T(-1)};
     const T nn = dot(n, n);
     const T vn = dot(kb.v - ka.v, n);
     const T n_len = sqrt(nn);
@@ -355,6 +592,9 @@ template <class T> struct World<T>::Impl {
     } else {
       ++counts.grazes;  // predicted, but not approaching at the contact: no impulse is due
     }
+    // Resting contact: faces that stop holding a body, and a face that starts to.
+    if (!a.fixed) update_rest(s.lo, s.hi, -g.normal, g.point);
+    if (!b.fixed) update_rest(s.hi, s.lo, g.normal, g.point);
     info.va_after = a.v0;
     info.vb_after = b.v0;
 
@@ -463,6 +703,7 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
       b.v0 = vec_cast<T>(d.velocity);
       const Vec2d total = d.acceleration + (d.gravity ? scene.world.gravity : Vec2d{});
       b.acc = vec_cast<T>(total);
+      b.field_acc = b.acc;
       w.moving.push_back(static_cast<BodyIndex>(i));
     }
     w.bodies.push_back(std::move(b));
@@ -477,6 +718,7 @@ template <class T> World<T>& World<T>::operator=(World&&) noexcept = default;
 
 template <class T> void World<T>::on_collision(CollisionCallback cb) { impl_->on_collision = std::move(cb); }
 template <class T> void World<T>::on_frame(FrameCallback cb) { impl_->on_frame = std::move(cb); }
+template <class T> void World<T>::on_motion_change(MotionCallback cb) { impl_->on_motion_change = std::move(cb); }
 template <class T> void World<T>::add_timer(T time, TimerCallback cb) {
   if (time < impl_->now || time > impl_->horizon) return;
   impl_->timers.push({time, impl_->timer_seq++, std::move(cb)});
@@ -510,6 +752,14 @@ template <class T> bool World<T>::step() {
       w.reason = StopReason::ReachedUntil;
       w.finished = true;
       break;
+    }
+    if (kind == EventKind::Collision && contact->leave) {
+      const Scheduled<T> s = *contact;
+      const BodyIndex owner = w.heap.top_index();
+      w.now = std::max(w.now, s.time);
+      w.leave(s, owner);
+      if (w.on_motion_change) w.on_motion_change(owner, w.now);
+      continue;
     }
     if (kind == EventKind::Collision) {
       const Scheduled<T> s = *contact;
@@ -583,7 +833,13 @@ template <class T> BodySnapshot<T> World<T>::snapshot(BodyIndex i) const {
 template <class T> BodyMotion<T> World<T>::motion(BodyIndex i) const {
   const auto& b = impl_->bodies.at(i);
   if (b.fixed) return {T(0), b.p0, Vec2<T>{}, Vec2<T>{}};
-  return {b.t0, b.p0, b.v0, b.acc};
+  BodyMotion<T> m{b.t0, b.p0, b.v0, b.acc};
+  for (int k = 0; k < b.supports; ++k) m.supports[static_cast<std::size_t>(k)] = b.support[static_cast<std::size_t>(k)].body;
+  return m;
+}
+template <class T> Vec2<T> World<T>::field_acceleration(BodyIndex i) const {
+  const auto& b = impl_->bodies.at(i);
+  return b.fixed ? Vec2<T>{} : b.field_acc;
 }
 template <class T> ShapeKind World<T>::shape(BodyIndex i) const { return impl_->bodies.at(i).shape.kind; }
 template <class T> T World<T>::radius(BodyIndex i) const { return impl_->bodies.at(i).shape.radius; }
@@ -602,8 +858,12 @@ template <class T> void World<T>::set_velocity(BodyIndex i, Vec2<T> velocity) {
   if (b.fixed) throw std::invalid_argument("set_velocity: body \"" + b.id + "\" is fixed");
   w.rebase(b, w.now);
   b.v0 = velocity;
+  // A new velocity lifts the body off its faces unless it still slides along them.
+  b.supports = 0;
+  b.acc = b.field_acc;
   ++b.version;
   w.reschedule(i);
+  if (w.on_motion_change) w.on_motion_change(i, w.now);
 }
 
 template <class T> T World<T>::kinetic_energy() const {
@@ -620,7 +880,7 @@ template <class T> T World<T>::potential_energy() const {
   T e{};
   for (BodyIndex i : impl_->moving) {
     const auto& b = impl_->bodies[i];
-    e -= b.mass * dot(b.acc, impl_->kinematics(b, impl_->now).p);
+    e -= b.mass * dot(b.field_acc, impl_->kinematics(b, impl_->now).p);
   }
   return e;
 }

@@ -17,9 +17,10 @@ ExactVec position_at(const ExactMotion& m, const Dyadic& t) {
 Dyadic dot(const ExactVec& a, const ExactVec& b) { return a.x * b.x + a.y * b.y; }
 
 // Kinetic energy m v.v / 2 plus the potential of the body's constant acceleration field,
-// -m acc.p, at time t on the given motion.
-Dyadic energy(const Dyadic& mass, const ExactVec& v, const ExactMotion& m, const Dyadic& t) {
-  return mass * (dot(v, v).scaled(-1) - dot(m.acc, position_at(m, t)));
+// -m field.p, at time t on the given motion (a resting body's path has another acceleration
+// than its field).
+Dyadic energy(const Dyadic& mass, const ExactVec& v, const ExactVec& field, const ExactMotion& m, const Dyadic& t) {
+  return mass * (dot(v, v).scaled(-1) - dot(field, position_at(m, t)));
 }
 
 double length(const ExactVec& v) { return std::sqrt(dot(v, v).to_double()); }
@@ -38,8 +39,8 @@ Conservation measure_conservation(const ExactBody& a, const ExactBody& b, const 
   } sides[2] = {{a, e.va_before, e.va_after, a_after}, {b, e.vb_before, e.vb_after, b_after}};
   for (const auto& s : sides) {
     if (s.body.fixed) continue;
-    c.energy_change += energy(s.body.mass, s.after, s.motion_after, e.time) -
-                       energy(s.body.mass, s.before, s.body.motion, e.time);
+    c.energy_change += energy(s.body.mass, s.after, s.body.field_acc, s.motion_after, e.time) -
+                       energy(s.body.mass, s.before, s.body.field_acc, s.body.motion, e.time);
     c.momentum_change.x += s.body.mass * (s.after.x - s.before.x);
     c.momentum_change.y += s.body.mass * (s.after.y - s.before.y);
     c.kinetic_before += (s.body.mass * dot(s.before, s.before)).to_double() / 2;

@@ -43,6 +43,7 @@ void set_motion(BodyModel<Dyadic>& m, const ExactMotion& motion) {
   m.p0 = exact_vec(motion.p0);
   m.v0 = exact_vec(motion.v0);
   m.acc = exact_vec(motion.acc);
+  m.supports = motion.supports;
 }
 
 void set_motion(BodyModel<Interval>& m, const ExactMotion& motion) {
@@ -50,6 +51,7 @@ void set_motion(BodyModel<Interval>& m, const ExactMotion& motion) {
   m.p0 = interval_vec(motion.p0);
   m.v0 = interval_vec(motion.v0);
   m.acc = interval_vec(motion.acc);
+  m.supports = motion.supports;
 }
 
 Frame::Frame(const std::vector<BodyModel<Dyadic>>& exact, const std::vector<BodyModel<Interval>>& interval,

@@ -6,6 +6,7 @@
 #include "interval.hpp"
 #include "pge/oracle_state.hpp"
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -19,6 +20,9 @@ template <class N> struct BodyModel {
   std::vector<V2<N>> world;  // fixed bodies: the engine's world vertices
   N t0{};
   V2<N> p0, v0, acc;
+  std::array<BodyIndex, 2> supports{kNoBody, kNoBody};  // ExactMotion::supports
+
+  bool rests_on(BodyIndex j) const { return supports[0] == j || supports[1] == j; }
 };
 
 BodyModel<Dyadic> exact_model(const ExactBody& b);

@@ -161,6 +161,29 @@ Judgement Referee::judge(const ExactEvent& e, const ExactMotion& a_after, const 
   return j;
 }
 
+EndJudgement Referee::take_motion(BodyIndex i, const ExactMotion& motion, const Dyadic& time) {
+  const auto start = Clock::now();
+  Impl& m = *impl_;
+  if (i >= m.state.bodies.size()) throw std::invalid_argument("Referee::take_motion: body out of range");
+  EndJudgement out;
+  const Dyadic tau = time - m.state.now;
+  if (tau.sign() > 0) {
+    Frame fr = m.frame();
+    out.next = m.search(fr, tau, {kNoBody, kNoBody}, {});
+    out.miss = out.next.time && out.next.time->compare(time) < 0;
+    if (out.miss) ++m.stats.misses_between_events;
+  }
+  ExactBody& b = m.state.bodies[i];
+  if (!b.fixed) {
+    b.motion = motion;
+    set_motion(m.exact[i], motion);
+    set_motion(m.interval[i], motion);
+  }
+  m.state.now = std::max(m.state.now, time);
+  m.stats.seconds += std::chrono::duration<double>(Clock::now() - start).count();
+  return out;
+}
+
 NextEvent Referee::next_event() {
   const auto start = Clock::now();
   Frame fr = impl_->frame();

@@ -89,6 +89,12 @@ std::optional<PairResult> pair_contact(Frame& fr, FeatureCache& features, BodyIn
   return best;
 }
 
+// A body resting on a fixed face (ExactMotion::supports) touches it all along its path: a
+// contact state, which has no events (DESIGN.md, resting contact).
+static bool resting_pair(const Frame& fr, BodyIndex i, BodyIndex j) {
+  return fr.exact_body(i).rests_on(j) || fr.exact_body(j).rests_on(i);
+}
+
 std::vector<BodyPair> candidate_pairs(Frame& fr, FeatureCache& features, const Interval& window, bool filter,
                                       BodyPair skip, SearchCounters& n) {
   const std::uint64_t total = pair_count(fr);
@@ -100,7 +106,8 @@ std::vector<BodyPair> candidate_pairs(Frame& fr, FeatureCache& features, const I
   if (!filter) {
     for (BodyIndex i = 0; i < fr.size(); ++i)
       for (BodyIndex j = i + 1; j < fr.size(); ++j)
-        if (!(fr.exact_body(i).fixed && fr.exact_body(j).fixed) && BodyPair{i, j} != skip) out.push_back({i, j});
+        if (!(fr.exact_body(i).fixed && fr.exact_body(j).fixed) && BodyPair{i, j} != skip && !resting_pair(fr, i, j))
+          out.push_back({i, j});
     return out;
   }
   const Interval tau(0.0, window.hi());
@@ -108,7 +115,7 @@ std::vector<BodyPair> candidate_pairs(Frame& fr, FeatureCache& features, const I
   boxes.reserve(fr.size());
   for (BodyIndex i = 0; i < fr.size(); ++i) boxes.push_back(swept_box(fr, i, tau));
   for (const BodyPair& p : box_pairs(fr, boxes))
-    if (p != skip && any_feature_may_touch(fr, features, p, tau)) out.push_back(p);
+    if (p != skip && !resting_pair(fr, p.first, p.second) && any_feature_may_touch(fr, features, p, tau)) out.push_back(p);
   std::sort(out.begin(), out.end());
   n.pairs_filtered += examined - out.size();
   return out;

@@ -44,6 +44,22 @@ inline constexpr double kMaxFramesPerRun = 1e9;
 inline constexpr std::uint32_t kStormCollisions = 1000;
 inline constexpr double kStormWindowRelative = 1e-9;
 
+// Resting contact (DESIGN.md): a body touching a fixed straight face (a segment, or an edge of a
+// fixed polygon) while its acceleration presses it in, and whose bounce off the face would be
+// rounding noise, stops bouncing: its normal speed is removed and it slides along the face, with
+// the normal component of its acceleration removed, until it leaves the face's end or something
+// hits it. Noise, for a contact with restitution < 1: a rise w^2 / (2 a_n) below kRestHeightUlps
+// ulps of the body's coordinate scale (the rounding of its position), so a Zeno sequence of
+// bounces ends after finitely many events; with restitution 1: a normal speed within
+// kRestHeightUlps ulps of the body's speed (the rounding of its velocity), so that an elastic
+// bounce keeps its energy. Dimensionless. A contact counts as on a face when its normal is
+// within kRestNormalTolerance of the face's normal (1 - cos of the angle; dimensionless), and a
+// polygon's vertex touches the face when it is within kRestVertexTolerance of the lowest vertex
+// (relative to the polygon's size).
+inline constexpr double kRestHeightUlps = 16;
+inline constexpr double kRestNormalTolerance = 1e-9;
+inline constexpr double kRestVertexTolerance = 1e-9;
+
 // Overlap bound: the largest overlap between two bodies, at a contact or between events, in
 // units of epsilon(T) * (largest coordinate magnitude of the pair, vertices included, + the
 // pair's relative speed * |t| + contact distance). A contact time is computed from coordinates

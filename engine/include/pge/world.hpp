@@ -8,6 +8,7 @@
 #include "pge/scene.hpp"
 #include "pge/vec2.hpp"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -40,14 +41,21 @@ struct EventCounts {
   std::uint64_t stale = 0;        // queue entries dropped because a partner had changed
   std::uint64_t predictions = 0;  // pair predictions computed
   std::uint64_t exact_predictions = 0;  // of those, near-grazes decided from the exact paths
+  std::uint64_t rests = 0;        // contacts that put a body to rest on a fixed face
+  std::uint64_t leaves = 0;       // resting bodies that slid off a face's end
 };
 
 // The closed-form path the engine holds for a body: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2
 // for t >= t0 until an event changes it. For fixed bodies v0 = acc = 0 and t0 = 0. This is the
 // state an exact referee reads (it never calls the engine's algebra).
+// A body resting on fixed faces (resting contact, DESIGN.md) slides along them: acc is then its
+// field acceleration without the components the faces hold (zero in a V of two faces), and
+// `supports` names the fixed bodies it rests on (kNoBody when unused): the body and a support
+// touch all along the path, which is no contact event.
 template <class T> struct BodyMotion {
   T t0{};
   Vec2<T> p0, v0, acc;
+  std::array<BodyIndex, 2> supports{kNoBody, kNoBody};
 };
 
 // A body's state at the world's current time.
@@ -61,6 +69,9 @@ template <class T> class World {
   using CollisionCallback = std::function<void(const CollisionInfo<T>&)>;
   using TimerCallback = std::function<void(World&, T time)>;
   using FrameCallback = std::function<void(const World&, T time)>;
+  // A body's motion changed at `time` other than by a collision: it slid off a face it rested
+  // on, or set_velocity replaced its velocity.
+  using MotionCallback = std::function<void(BodyIndex body, T time)>;
 
   // Throws std::invalid_argument for an invalid scene (see validate_scene) and
   // UnsupportedScene for shapes this version does not simulate.
@@ -73,6 +84,7 @@ template <class T> class World {
 
   void on_collision(CollisionCallback callback);
   void on_frame(FrameCallback callback);
+  void on_motion_change(MotionCallback callback);
   // Calls `callback` when simulated time reaches `time` (ignored if past the horizon).
   void add_timer(T time, TimerCallback callback);
 
@@ -94,6 +106,9 @@ template <class T> class World {
   T mass(BodyIndex i) const;  // 0 for fixed bodies (infinite mass)
   BodySnapshot<T> snapshot(BodyIndex i) const;  // at time()
   BodyMotion<T> motion(BodyIndex i) const;
+  // The acceleration of the body's field (its own plus gravity), which potential energy is
+  // measured in; motion().acc differs from it while the body rests on a face. Zero when fixed.
+  Vec2<T> field_acceleration(BodyIndex i) const;
   ShapeKind shape(BodyIndex i) const;
   T radius(BodyIndex i) const;       // circles; 0 otherwise
   T restitution(BodyIndex i) const;  // the body's own, or the world default it took

@@ -103,11 +103,14 @@ struct RefereeStats {
   std::uint64_t pairs_exact = 0;     // pairs that needed exact arithmetic (the engine's own included)
   std::uint64_t features_exact = 0;  // feature pairs solved exactly
   double seconds = 0;                // wall time inside judge / judge_end / next_event
+  // Contacts the engine passed over before a motion change that was not a collision (a body
+  // sliding off a face, set_velocity): misses found by take_motion.
+  std::uint64_t misses_between_events = 0;
 };
 
 // Follows one engine run from its initial state. Every change of the engine's state must reach
-// it through judge() (each on_collision callback, impulse or not); a run that changes velocities
-// otherwise (World::set_velocity from a timer) cannot be followed.
+// it: collisions through judge() (each on_collision callback, impulse or not), other changes of
+// a body's motion (World::on_motion_change) through take_motion().
 class Referee {
  public:
   explicit Referee(ExactState state, RefereeOptions options = {});
@@ -121,6 +124,10 @@ class Referee {
   Judgement judge(const ExactEvent& e, const ExactMotion& a_after, const ExactMotion& b_after);
   // At the end of a run that reached its horizon: any contact left before it is a miss.
   EndJudgement judge_end();
+  // Body i continues on `motion` from `time` on (not a collision: a body sliding off the end of
+  // a face it rested on, or a velocity set by a timer). A contact exactly before `time` that the
+  // engine did not process is a miss: returned, and counted in stats().misses_between_events.
+  EndJudgement take_motion(BodyIndex i, const ExactMotion& motion, const Dyadic& time);
   // The exact next event from the current state.
   NextEvent next_event();
 
@@ -143,6 +150,9 @@ template <class T, class OnJudged> void follow(World<T>& world, Referee& referee
     const ExactEvent e = exact_event(info);
     const Judgement j = referee.judge(e, exact_motion(world.motion(info.a)), exact_motion(world.motion(info.b)));
     on_judged(info, e, j);
+  });
+  world.on_motion_change([&world, &referee](BodyIndex i, T time) {
+    referee.take_motion(i, exact_motion(world.motion(i)), Dyadic::from(time));
   });
 }
 

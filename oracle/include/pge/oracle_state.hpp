@@ -8,6 +8,7 @@
 #include "pge/scene.hpp"
 #include "pge/world.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +18,9 @@ namespace pge::oracle {
 struct ExactMotion {
   Dyadic t0;
   ExactVec p0, v0, acc;
+  // Fixed bodies the body rests on (BodyMotion::supports): touching all along the path, which is
+  // a contact state, not an event; the search skips these pairs.
+  std::array<BodyIndex, 2> supports{kNoBody, kNoBody};
 };
 
 struct ExactBody {
@@ -28,6 +32,7 @@ struct ExactBody {
   std::vector<ExactVec> local;  // vertices relative to the position (segment: a, b)
   std::vector<ExactVec> world;  // fixed bodies: the world vertices the engine predicts with
   ExactMotion motion;           // fixed bodies: p0 is the position, v0 = acc = 0
+  ExactVec field_acc;           // the field potential energy is measured in (World::field_acceleration)
 };
 
 struct ExactState {
@@ -49,7 +54,7 @@ struct ExactEvent {
 };
 
 template <class T> ExactMotion exact_motion(const BodyMotion<T>& m) {
-  return {Dyadic::from(m.t0), ExactVec::from(m.p0), ExactVec::from(m.v0), ExactVec::from(m.acc)};
+  return {Dyadic::from(m.t0), ExactVec::from(m.p0), ExactVec::from(m.v0), ExactVec::from(m.acc), m.supports};
 }
 
 template <class T> ExactBody exact_body(const World<T>& w, BodyIndex i) {
@@ -62,6 +67,7 @@ template <class T> ExactBody exact_body(const World<T>& w, BodyIndex i) {
   for (const auto& v : w.local_vertices(i)) b.local.push_back(ExactVec::from(v));
   for (const auto& v : w.world_vertices(i)) b.world.push_back(ExactVec::from(v));
   b.motion = exact_motion(w.motion(i));
+  b.field_acc = ExactVec::from(w.field_acceleration(i));
   return b;
 }
 
