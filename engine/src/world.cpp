@@ -462,8 +462,14 @@ template <class T> struct World<T>::Impl {
     for (int k = 0; k < m.supports; ++k) {
       const Support& s = m.support[static_cast<std::size_t>(k)];
       using std::abs;
-      if (abs(dot(m.v0, s.n)) <= rest_speed(m, s.body, dot(m.field_acc, s.n)))
-        m.support[static_cast<std::size_t>(kept++)] = s;
+      // Hit by another moving body: the face keeps holding it only if the hit left its normal
+      // speed exactly zero; removing any normal speed there would change the two bodies'
+      // momentum inside their own collision (found by fuzz_engine,
+      // fixtures/regressions/rest-snap-in-a-two-body-collision.json). A normal speed left is
+      // the face's own contact to settle, at once, as a contact with the face.
+      const T w = dot(m.v0, s.n);
+      const bool keep = bodies[partner].fixed ? abs(w) <= rest_speed(m, s.body, dot(m.field_acc, s.n)) : w == T(0);
+      if (keep) m.support[static_cast<std::size_t>(kept++)] = s;
     }
     m.supports = kept;
     bool changed = kept != before;
