@@ -242,6 +242,20 @@ int check_file(const std::string& file, const CheckOptions& opt, const std::stri
       fmt::print(stderr, "pge check: {}: {}\n", file, e.what());
       fail_row("error: invalid scene");
       return kExitBadScene;
+    } catch (const std::logic_error& e) {
+      // The engine's own validation (PGE_VALIDATE builds) stopped the run: an overlap past the
+      // bound, say, as when fast lets a box fall through the box it rests on. A failure of that
+      // run, reported as one; a contrast run's does not fail the check.
+      progress.clear();
+      const bool contrast = plan(expect, solver, solvers.size() > 1, deviated).enforcement == Enforcement::Contrast;
+      fmt::print(stderr, "pge check: {}: {}{}: the run failed the engine's validation: {}\n", file, solver_name(solver),
+                 contrast ? " (contrast)" : "", e.what());
+      if (row) {
+        TableCell& cell = row->cells[static_cast<std::size_t>(solver)];
+        cell.events = cell.ulps = cell.drift = "-";
+        cell.result = contrast ? "n/a (contrast: fails validation)" : "FAIL: validation";
+      }
+      if (!contrast && exit_code == kExitOk) exit_code = kExitCheckFailed;
     }
   }
   return exit_code;
