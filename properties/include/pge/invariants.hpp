@@ -53,17 +53,6 @@ struct Failure {
   std::string detail;
 };
 
-// The overlap invariant: an overlap is a failure when it is deeper than the scene's overlap at
-// the start (World::largest_overlap() before the first step) by more than kOverlapBoundUlps
-// (in the pair's ulps: `ulps` is `depth` in those units). A scene may start overlapping by up to
-// kStartOverlapTolerance of a contact distance, far more than the bound, and such an overlap
-// stays until the pair separates: a body resting in a V it overlaps never does (found by
-// fuzz_engine: fixtures/regressions/rest-in-v-overlapping-at-the-start.json). The engine must
-// not make an overlap; it need not undo one it was given.
-inline bool overlap_past_bound(double ulps, double depth, double start_depth) {
-  return ulps > kOverlapBoundUlps && (depth - start_depth) * (ulps / depth) > kOverlapBoundUlps;
-}
-
 struct InvariantOptions {
   SolverKind solver = SolverKind::Robust;
   bool storms_fail = false;
