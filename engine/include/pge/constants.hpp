@@ -57,6 +57,11 @@ inline constexpr double kStormWindowRelative = 1e-9;
 // polygon's vertex touches the face when it is within kRestVertexTolerance of the lowest vertex
 // (relative to the polygon's size).
 inline constexpr double kRestHeightUlps = 16;
+// A body resting on a tilted face slides with its acceleration and velocity projected along the
+// face; the projections' normal components are rounding (a few ulps of the unprojected
+// magnitudes), and are lifted off the face by kRestLiftUlps ulps of those magnitudes so that
+// the rounding can only carry the body off the face (a gap), never into it. Dimensionless.
+inline constexpr double kRestLiftUlps = 8;
 inline constexpr double kRestNormalTolerance = 1e-9;
 inline constexpr double kRestVertexTolerance = 1e-9;
 
