@@ -469,10 +469,9 @@ template <class T> struct World<T>::Impl {
   // now leaves or is pushed into by more than a rest speed stop holding it (a push into a face
   // is the face's own contact, found at once by the next prediction); then, if the contact was
   // with a fixed face that presses it and its bounce off that face would be rounding noise, it
-  // rests on that face too. Returns whether its supports changed.
-  bool update_rest(BodyIndex mi, BodyIndex partner, const Vec2<T>& normal_to_m, const Vec2<T>& point) {
+  // rests on that face too.
+  void update_rest(BodyIndex mi, BodyIndex partner, const Vec2<T>& normal_to_m, const Vec2<T>& point) {
     Body& m = bodies[mi];
-    const int before = m.supports;
     int kept = 0;
     for (int k = 0; k < m.supports; ++k) {
       const Support& s = m.support[static_cast<std::size_t>(k)];
@@ -487,7 +486,6 @@ template <class T> struct World<T>::Impl {
       if (keep) m.support[static_cast<std::size_t>(kept++)] = s;
     }
     m.supports = kept;
-    bool changed = kept != before;
     if (bodies[partner].fixed && !m.rests_on(partner) && m.supports < 2) {
       using std::sqrt;
       const T len = sqrt(dot(normal_to_m, normal_to_m));
@@ -501,14 +499,11 @@ template <class T> struct World<T>::Impl {
           if (pressing < T(0) && dot(m.v0, f->n) <= rest_speed(m, partner, pressing) && !(off && *off <= now)) {
             m.support[static_cast<std::size_t>(m.supports++)] = *f;
             ++counts.rests;
-            changed = true;
           }
         }
       }
     }
-    if (changed || m.supports > 0) resolve_supports(m);
-    else m.acc = m.field_acc;
-    return changed;
+    resolve_supports(m);  // with no face left: the field's acceleration again
   }
 
   // A resting body slides off its face's end: the face stops holding it.
@@ -521,7 +516,6 @@ template <class T> struct World<T>::Impl {
       --m.supports;
     }
     resolve_supports(m);
-    if (m.supports == 0) m.acc = m.field_acc;
     ++m.version;
     ++counts.leaves;
     reschedule(owner);
