@@ -10,7 +10,9 @@
 namespace pge::cli {
 
 int generate_command(const GenerateOptions& opt) {
-  const Scene scene = make_gas(opt.gas);
+  const Scene scene = opt.family == "pegs"       ? make_pegs(opt.gas)
+                      : opt.family == "polygons" ? make_polygons(opt.gas)
+                                                 : make_gas(opt.gas);
   if (auto problem = validate_scene(scene)) {
     fmt::print(stderr, "pge generate: these parameters give an invalid scene: {}: {}\n", problem->field,
                problem->message);

@@ -57,6 +57,12 @@ int main(int argc, char** argv) {
   std::string solver;
   run_cmd->add_option("--solver", solver, "Root solver: fast, robust, certified (default: each scene's run.solver)")
       ->check(CLI::IsMember({"fast", "robust", "certified"}));
+  std::string broad_phase = "auto";
+  run_cmd->add_option("--broad-phase", broad_phase,
+                      "Which pairs are predicted: grid (the bodies in nearby cells), all-pairs (every body), or auto "
+                      "(grid from 64 moving bodies on; the PGE_BROAD_PHASE environment variable can override auto). "
+                      "The events are the same; only the cost differs")
+      ->check(CLI::IsMember({"auto", "grid", "all-pairs"}));
   run_cmd->add_flag("--quiet,-q", run.quiet, "Print no summary (errors still go to stderr)");
   run_cmd->add_flag("--progress", run.progress, "Show progress on stderr (default: only when stderr is a terminal)");
 
@@ -126,9 +132,12 @@ int main(int argc, char** argv) {
 
   GenerateOptions gen;
   CLI::App* gen_cmd = app.add_subcommand("generate", "Write a scene of a deterministic family (same seed, same scene).");
-  gen_cmd->add_option("family", gen.family, "Scene family: gas (equal elastic discs in a square box)")
-      ->check(CLI::IsMember({"gas"}));
-  gen_cmd->add_option("--bodies", gen.gas.bodies, "Number of discs")->check(CLI::Range(1u, 10000000u));
+  gen_cmd->add_option("family", gen.family,
+                      "Scene family: gas (equal elastic discs in a square box), pegs (discs raining through a "
+                      "lattice of fixed pegs under gravity, 1 unless --gravity), polygons (moving squares and "
+                      "triangles among fixed pentagons)")
+      ->check(CLI::IsMember({"gas", "pegs", "polygons"}));
+  gen_cmd->add_option("--bodies", gen.gas.bodies, "Number of moving bodies")->check(CLI::Range(1u, 10000000u));
   gen_cmd->add_option("--radius", gen.gas.radius, "Disc radius")->check(kPositive);
   gen_cmd->add_option("--area-fraction", gen.gas.area_fraction, "Disc area / box area, in (0, 0.7]")
       ->check(CLI::Range(1e-6, 0.7));
@@ -160,6 +169,7 @@ int main(int argc, char** argv) {
         pge::parse_solver_kind(solver, kind);
         run.solver = kind;
       }
+      pge::parse_broad_phase(broad_phase, run.broad_phase);
       if (!run.progress) run.progress = isatty(fileno(stderr)) != 0 && !run.quiet;
       return run_command(run);
     }

@@ -51,6 +51,7 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   wo.max_events = opt.max_events;
   wo.frames_per_second = opt.frames;
   wo.solver = opt.solver;
+  wo.broad_phase = opt.broad_phase;
   World<T> world(scene, wo);
 
   if (trace) {
@@ -99,6 +100,9 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   j["frames"] = n.frames;
   j["stale"] = n.stale;
   j["predictions"] = n.predictions;
+  j["broad_phase"] = broad_phase_name(world.broad_phase());
+  j["cell_crossings"] = n.crossings;
+  j["global_bodies"] = n.global_bodies;
   j["energy_start"] = {{"kinetic", start.kinetic}, {"potential", start.potential}};
   j["energy_end"] = {{"kinetic", end.kinetic}, {"potential", end.potential}};
   j["momentum_start"] = {start.momentum.x, start.momentum.y};
@@ -149,6 +153,8 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
     fmt::print("  state hash: {:#018x}\n", hash);
     fmt::print("  speed: {} collisions in {:.3f} s: {:.0f} events/s ({} predictions, {} stale queue entries)\n",
                n.collisions, wall, wall > 0 ? static_cast<double>(n.collisions) / wall : 0.0, n.predictions, n.stale);
+    if (world.broad_phase() == BroadPhase::Grid)
+      fmt::print("  broad phase: grid, {} cell crossings, {} bodies outside the grid\n", n.crossings, n.global_bodies);
   }
   if (world.stop_reason() == StopReason::EventStorm) {
     const auto& s = world.storm();

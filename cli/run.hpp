@@ -3,6 +3,7 @@
 
 #include "pge/roots.hpp"
 #include "pge/scalar.hpp"
+#include "pge/world.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -21,6 +22,7 @@ struct RunOptions {
   std::string json_summary;         // all summaries as one JSON array
   ScalarKind scalar = ScalarKind::Double;
   std::optional<SolverKind> solver;  // nothing: each scene's run.solver
+  BroadPhase broad_phase = BroadPhase::Auto;
   bool quiet = false;               // no summary on stdout (errors still go to stderr)
   bool progress = false;            // progress line on stderr (default: when it is a terminal)
 };

@@ -25,6 +25,8 @@ template <class T> struct Scheduled {
   // Not a contact: the owner, resting on the fixed body `partner`, slides off the end of that
   // face (support slot feature_a) at `time` (resting contact, world.cpp).
   bool leave = false;
+  // Not a contact: the owner crosses out of its broad-phase cell at `time` (broad_phase.hpp).
+  bool cross = false;
 
   bool valid() const { return lo != kNoBody; }
 
@@ -42,17 +44,24 @@ template <class T> struct Scheduled {
   }
 };
 
+// The heap array holds each entry's time beside its owner, so that sifting compares times in
+// contiguous memory and reads the full entry only to break a tie: with 1e5 bodies the entries
+// no longer fit in cache, and an indirect read per comparison was the queue's main cost.
 template <class T> class EventHeap {
  public:
   void reset(std::size_t body_count, const std::vector<BodyIndex>& members) {
     entries_.assign(body_count, Scheduled<T>{});
     pos_.assign(body_count, kAbsent);
-    heap_ = members;
-    for (std::size_t k = 0; k < heap_.size(); ++k) pos_[heap_[k]] = k;
+    heap_.clear();
+    heap_.reserve(members.size());
+    for (BodyIndex i : members) {
+      pos_[i] = heap_.size();
+      heap_.push_back({entries_[i].time, i});
+    }
   }
   bool empty() const { return heap_.empty(); }
-  const Scheduled<T>& top() const { return entries_[heap_.front()]; }
-  BodyIndex top_index() const { return heap_.front(); }
+  const Scheduled<T>& top() const { return entries_[heap_.front().owner]; }
+  BodyIndex top_index() const { return heap_.front().owner; }
   const Scheduled<T>& at(BodyIndex i) const { return entries_[i]; }
 
   // Owners of every valid entry whose time is <= bound, in heap order (children are never
@@ -63,58 +72,76 @@ template <class T> class EventHeap {
     while (!stack.empty()) {
       const std::size_t k = stack.back();
       stack.pop_back();
-      const Scheduled<T>& e = entries_[heap_[k]];
+      const Scheduled<T>& e = entries_[heap_[k].owner];
       if (!e.valid() || !(e.time <= bound)) continue;
-      f(heap_[k]);
+      f(heap_[k].owner);
       for (std::size_t c = 2 * k + 1; c <= 2 * k + 2 && c < heap_.size(); ++c) stack.push_back(c);
     }
+  }
+
+  std::size_t memory_bytes() const {
+    return entries_.capacity() * sizeof(Scheduled<T>) + pos_.capacity() * sizeof(std::size_t) +
+           heap_.capacity() * sizeof(Node);
   }
 
   void set(BodyIndex i, const Scheduled<T>& s) {
     entries_[i] = s;
     std::size_t k = pos_[i];
     if (k == kAbsent) return;
+    heap_[k].time = s.time;
     sift_up(k);
     sift_down(pos_[i]);
   }
 
  private:
   static constexpr std::size_t kAbsent = std::numeric_limits<std::size_t>::max();
+  struct Node {
+    T time;  // the entry's time (infinity when invalid)
+    BodyIndex owner;
+  };
 
-  // Equal keys (one contact held by both of its bodies) are ordered by owner index.
-  bool less(BodyIndex x, BodyIndex y) const {
-    if (entries_[x].key_less(entries_[y])) return true;
-    if (entries_[y].key_less(entries_[x])) return false;
-    return x < y;
+  // The order of Scheduled::key_less; equal keys (one contact held by both of its bodies) are
+  // ordered by owner index. Invalid entries have an infinite time and sort last.
+  bool less(const Node& x, const Node& y) const {
+    if (x.time < y.time) return true;
+    if (y.time < x.time) return false;
+    const Scheduled<T>& a = entries_[x.owner];
+    const Scheduled<T>& b = entries_[y.owner];
+    if (a.key_less(b)) return true;
+    if (b.key_less(a)) return false;
+    return x.owner < y.owner;
   }
-  void place(std::size_t k, BodyIndex i) { heap_[k] = i; pos_[i] = k; }
+  void place(std::size_t k, const Node& n) {
+    heap_[k] = n;
+    pos_[n.owner] = k;
+  }
   void sift_up(std::size_t k) {
-    const BodyIndex i = heap_[k];
+    const Node n = heap_[k];
     while (k > 0) {
       const std::size_t parent = (k - 1) / 2;
-      if (!less(i, heap_[parent])) break;
+      if (!less(n, heap_[parent])) break;
       place(k, heap_[parent]);
       k = parent;
     }
-    place(k, i);
+    place(k, n);
   }
   void sift_down(std::size_t k) {
-    const BodyIndex i = heap_[k];
-    const std::size_t n = heap_.size();
+    const Node n = heap_[k];
+    const std::size_t size = heap_.size();
     for (;;) {
       std::size_t child = 2 * k + 1;
-      if (child >= n) break;
-      if (child + 1 < n && less(heap_[child + 1], heap_[child])) ++child;
-      if (!less(heap_[child], i)) break;
+      if (child >= size) break;
+      if (child + 1 < size && less(heap_[child + 1], heap_[child])) ++child;
+      if (!less(heap_[child], n)) break;
       place(k, heap_[child]);
       k = child;
     }
-    place(k, i);
+    place(k, n);
   }
 
   std::vector<Scheduled<T>> entries_;
   std::vector<std::size_t> pos_;
-  std::vector<BodyIndex> heap_;
+  std::vector<Node> heap_;
 };
 
 }  // namespace pge

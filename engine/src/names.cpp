@@ -1,6 +1,7 @@
 #include "pge/event.hpp"
 #include "pge/scalar.hpp"
 #include "pge/scene.hpp"
+#include "pge/world.hpp"
 
 namespace pge {
 
@@ -36,6 +37,23 @@ bool parse_solver_kind(std::string_view text, SolverKind& out) {
   if (text == "fast") out = SolverKind::Fast;
   else if (text == "robust") out = SolverKind::Robust;
   else if (text == "certified") out = SolverKind::Certified;
+  else return false;
+  return true;
+}
+
+std::string_view broad_phase_name(BroadPhase b) {
+  switch (b) {
+    case BroadPhase::Auto: return "auto";
+    case BroadPhase::AllPairs: return "all-pairs";
+    case BroadPhase::Grid: return "grid";
+  }
+  return "?";
+}
+
+bool parse_broad_phase(std::string_view text, BroadPhase& out) {
+  if (text == "auto") out = BroadPhase::Auto;
+  else if (text == "all-pairs") out = BroadPhase::AllPairs;
+  else if (text == "grid") out = BroadPhase::Grid;
   else return false;
   return true;
 }

@@ -2,12 +2,16 @@
 // date only when an event touches it; each keeps one scheduled event (its earliest predicted
 // contact) in an indexed binary heap, and an event whose partner has changed since it was
 // predicted is dropped and its owner rescheduled (lazy invalidation by version counters).
+// Which pairs a body is predicted against is the broad phase's choice (broad_phase.hpp): every
+// body, or the bodies in the grid cells around it; the grid's cell crossings are a second
+// indexed heap, merged with the first, that changes no motion.
 #include "pge/world.hpp"
 
 #include "pge/constants.hpp"
 #include "pge/hash.hpp"
 #include "pge/validate.hpp"
 
+#include "broad_phase.hpp"
 #include "contact.hpp"
 #include "event_heap.hpp"
 #include "refine.hpp"
@@ -17,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <queue>
@@ -39,12 +44,20 @@ template <class T> struct World<T>::Impl {
     T length{}, s_lo{}, s_hi{};
   };
 
-  struct Body {
+  // Aligned to a cache line, with what every prediction reads first: for double, the motion
+  // fills the first line and the version, the exclusion and the shape's kind and radius the
+  // second, so a candidate costs two lines (with 1e5 bodies, the bodies do not fit in cache).
+  struct alignas(64) Body {
     bool fixed = false;
+    int supports = 0;  // faces in `support` that hold the body
     // Motion since t0: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2.
     T t0{};
     Vec2<T> p0, v0, acc;
     std::uint64_t version = 0;  // bumped whenever the body's motion changes
+    // A circle pair the exact paths say never touches although the rounded prediction did
+    // (refine_near_top): not predicted again while both bodies keep their motions.
+    BodyIndex no_contact_with = kNoBody;
+    std::uint64_t no_contact_version = 0, no_contact_partner_version = 0;
     BodyShape<T> shape;         // kind and radius first; a moving polygon's vertex is p(t) + local
     T mass{};
     T inv_mass{};          // 0 for fixed bodies
@@ -52,15 +65,10 @@ template <class T> struct World<T>::Impl {
     std::string id;
     T storm_start{};
     std::uint32_t storm_count = 0;
-    // A circle pair the exact paths say never touches although the rounded prediction did
-    // (refine_near_top): not predicted again while both bodies keep their motions.
-    BodyIndex no_contact_with = kNoBody;
-    std::uint64_t no_contact_version = 0, no_contact_partner_version = 0;
     // The field's acceleration (own + gravity); `acc` is the path's, which resting removes
     // components from. At most two faces hold a body in 2-D (a V holds it still).
     Vec2<T> field_acc;
     std::array<Support, 2> support;
-    int supports = 0;
 
     bool rests_on(BodyIndex j) const {
       for (int k = 0; k < supports; ++k)
@@ -79,6 +87,20 @@ template <class T> struct World<T>::Impl {
   std::vector<Body> bodies;
   std::vector<BodyIndex> moving;         // indices of moving bodies, ascending
   EventHeap<T> heap;                     // one scheduled contact per moving body
+
+  // ---- Broad phase (broad_phase.hpp). With the grid off every body is a candidate of every
+  // other; with it on, a body's candidates are the bodies in the 3x3 cells around its cell and
+  // the global bodies, or every body for a global one.
+  static constexpr std::uint32_t kGlobal = CellGrid::kGlobal;
+  static constexpr std::uint32_t kInCells = CellGrid::kGlobal - 1;   // a fixed body in the cells
+  static constexpr std::uint32_t kOutside = CellGrid::kGlobal - 2;   // a fixed body no cell reaches
+  bool grid_on = false;
+  CellGrid grid;
+  std::vector<std::uint32_t> cell;       // per body: its cell (moving), kInCells, kOutside or kGlobal
+  std::vector<BodyIndex> globals;        // bodies the grid does not hold
+  std::vector<std::uint32_t> seen;       // per body: the last candidate scan that met it (fixed
+  std::uint32_t scan = 0;                // bodies sit in several cells)
+  EventHeap<T> crossings;                // one scheduled cell crossing per moving body in the grid
   std::priority_queue<Timer, std::vector<Timer>, std::greater<>> timers;
   std::uint64_t timer_seq = 0;
   T now{};
@@ -290,17 +312,48 @@ template <class T> struct World<T>::Impl {
     return dot(kb.v - ka.v, g.normal) < T(0) && dot(g.normal, g.normal) > T(0);
   }
 
-  void reschedule(BodyIndex i) {
-    Scheduled<T> best;
-    for (BodyIndex j = 0; j < bodies.size(); ++j) {
-      if (j == i) continue;
-      const BodyIndex lo = std::min(i, j), hi = std::max(i, j);
-      auto c = predict(lo, hi);
-      if (!c) continue;
-      Scheduled<T> s{c->time, lo, hi, c->contact, c->feature_a, c->feature_b, c->at_start_overlap, c->corner,
-                     j, bodies[j].version};
-      if (s.key_less(best)) best = s;
+  // Offers the pair (i, j)'s earliest contact to `best`, the owner i's candidate event.
+  void offer(BodyIndex i, BodyIndex j, Scheduled<T>& best) {
+    const BodyIndex lo = std::min(i, j), hi = std::max(i, j);
+    auto c = predict(lo, hi);
+    if (!c) return;
+    Scheduled<T> s{c->time, lo, hi, c->contact, c->feature_a, c->feature_b, c->at_start_overlap, c->corner,
+                   j, bodies[j].version};
+    if (s.key_less(best)) best = s;
+  }
+
+  // Calls f(j) for every body j != i that i is predicted against (see the broad phase above).
+  template <class F> void for_candidates(BodyIndex i, F f) {
+    if (!grid_on || cell[i] == kGlobal) {
+      for (BodyIndex j = 0; j < bodies.size(); ++j)
+        if (j != i) f(j);
+      return;
     }
+    next_scan();
+    grid.visit_around(cell[i], [&](BodyIndex j) { visit_once(i, j, f); });
+    for (BodyIndex j : globals) f(j);
+  }
+
+  void next_scan() {
+    if (++scan == 0) {  // wrapped: forget every mark
+      std::fill(seen.begin(), seen.end(), 0u);
+      scan = 1;
+    }
+  }
+  // A fixed body registered in several cells of one scan is offered once.
+  template <class F> void visit_once(BodyIndex i, BodyIndex j, F& f) {
+    if (j == i) return;
+    if (bodies[j].fixed) {
+      if (seen[j] == scan) return;
+      seen[j] = scan;
+    }
+    f(j);
+  }
+
+  void reschedule(BodyIndex i) {
+    if (grid_on) schedule_crossing(i, now);
+    Scheduled<T> best;
+    for_candidates(i, [&](BodyIndex j) { offer(i, j, best); });
     const Body& b = bodies[i];
     for (int k = 0; k < b.supports; ++k) {
       const std::optional<T> t = leave_time(b, b.support[static_cast<std::size_t>(k)]);
@@ -317,6 +370,192 @@ template <class T> struct World<T>::Impl {
       best = s;
     }
     heap.set(i, best);
+  }
+
+  // ---- Broad phase: cells, crossings, global bodies (broad_phase.hpp).
+
+  // The grid for this scene, or none (grid_on false): the cell's body radius R is the largest
+  // reach among the moving bodies no larger than 4 times their median reach; larger bodies are
+  // global. The grid covers the moving bodies' positions and the fixed bodies of comparable
+  // extent, two cells beyond, with at most 16 cells per moving body (larger cells otherwise).
+  void setup_grid(BroadPhase mode) {
+    cell.assign(bodies.size(), kGlobal);
+    grid_on = mode == BroadPhase::Grid || (mode == BroadPhase::Auto && moving.size() >= kGridMinMovingBodies);
+    if (!grid_on || moving.empty()) {
+      grid_on = false;
+      return;
+    }
+    std::vector<double> reach;
+    reach.reserve(moving.size());
+    for (BodyIndex i : moving) reach.push_back(to_double(bodies[i].shape.reach));
+    std::vector<double> sorted = reach;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    double radius = 0;
+    for (double r : reach)
+      if (r <= 4 * median) radius = std::max(radius, r);
+    const double margin = radius / 8;
+    double side = 2 * radius * (1 + 0x1p-10) + 2 * margin;
+    // The region: moving positions, then fixed boxes no larger than 64 times their extent.
+    double lo_x = std::numeric_limits<double>::infinity(), lo_y = lo_x, hi_x = -lo_x, hi_y = -lo_x;
+    for (BodyIndex i : moving) {
+      const double x = to_double(bodies[i].p0.x), y = to_double(bodies[i].p0.y);
+      lo_x = std::min(lo_x, x); hi_x = std::max(hi_x, x);
+      lo_y = std::min(lo_y, y); hi_y = std::max(hi_y, y);
+    }
+    const double extent = std::max(hi_x - lo_x, hi_y - lo_y) + side;
+    std::vector<std::array<double, 4>> boxes(bodies.size());
+    for (BodyIndex j = 0; j < bodies.size(); ++j) {
+      if (!bodies[j].fixed) continue;
+      boxes[j] = fixed_box(bodies[j]);
+      const auto& b = boxes[j];
+      if (std::max(b[2] - b[0], b[3] - b[1]) > 64 * extent) continue;
+      lo_x = std::min(lo_x, b[0]); lo_y = std::min(lo_y, b[1]);
+      hi_x = std::max(hi_x, b[2]); hi_y = std::max(hi_y, b[3]);
+    }
+    const double cap = 16.0 * static_cast<double>(moving.size()) + 4096;
+    const double w = hi_x - lo_x, h = hi_y - lo_y;
+    side = std::max(side, std::sqrt((w + 4 * side) * (h + 4 * side) / cap));
+    for (int k = 0; k < 64 && (w / side + 5) * (h / side + 5) > cap; ++k) side *= 1.25;
+    if (!(std::isfinite(side) && side > 0 && std::isfinite(w) && std::isfinite(h))) {
+      grid_on = false;
+      return;
+    }
+    const auto nx = static_cast<std::uint32_t>(std::ceil(w / side) + 4), ny = static_cast<std::uint32_t>(std::ceil(h / side) + 4);
+    grid.configure(lo_x - 2 * side, lo_y - 2 * side, side, margin, nx, ny);
+    grid_radius = radius;
+    seen.assign(bodies.size(), 0u);
+    crossings.reset(bodies.size(), moving);
+    for (std::size_t k = 0; k < moving.size(); ++k) {
+      const BodyIndex i = moving[k];
+      if (reach[k] > radius) {
+        make_global(i);
+        continue;
+      }
+      const std::uint32_t c = grid.cell_of(to_double(bodies[i].p0.x), to_double(bodies[i].p0.y));
+      if (c == kGlobal) {
+        make_global(i);
+        continue;
+      }
+      cell[i] = c;
+      grid.insert(c, i);
+    }
+    // A fixed body in every cell its box grown by R + m covers (a moving body in a cell may be
+    // m outside it and reach R further): a moving body finds it in its own cell, and so among
+    // the 3x3 around it. More cells than the cap: global.
+    const double fixed_cap = std::max(4096.0, 8.0 * static_cast<double>(moving.size()));
+    for (BodyIndex j = 0; j < bodies.size(); ++j) {
+      if (!bodies[j].fixed) continue;
+      const auto& b = boxes[j];
+      const double grow = radius + margin;
+      std::uint32_t x0, y0, x1, y1;
+      if (!grid.cover(b[0] - grow, b[1] - grow, b[2] + grow, b[3] + grow, x0, y0, x1, y1)) {
+        cell[j] = kOutside;
+        continue;
+      }
+      if ((static_cast<double>(x1 - x0) + 1) * (static_cast<double>(y1 - y0) + 1) > fixed_cap) {
+        make_global(j);
+        continue;
+      }
+      cell[j] = kInCells;
+      for (std::uint32_t y = y0; y <= y1; ++y)
+        for (std::uint32_t x = x0; x <= x1; ++x) grid.insert(y * nx + x, j);
+    }
+  }
+
+  double grid_radius = 0;
+
+  // A fixed body's bounding box (lo x, lo y, hi x, hi y), in double.
+  static std::array<double, 4> fixed_box(const Body& b) {
+    if (!b.shape.is_outline()) {
+      const double x = to_double(b.p0.x), y = to_double(b.p0.y), r = to_double(b.shape.radius);
+      return {x - r, y - r, x + r, y + r};
+    }
+    std::array<double, 4> box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                              -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (const Vec2<T>& v : b.shape.world) {
+      const double x = to_double(v.x), y = to_double(v.y);
+      box[0] = std::min(box[0], x); box[1] = std::min(box[1], y);
+      box[2] = std::max(box[2], x); box[3] = std::max(box[3], y);
+    }
+    return box;
+  }
+
+  // Takes body i out of the grid for good: it becomes every body's candidate and they its.
+  // The caller reschedules it (a full scan) if it is moving.
+  void make_global(BodyIndex i) {
+    if (!bodies[i].fixed && cell[i] < kOutside) grid.remove(cell[i], i);
+    cell[i] = kGlobal;
+    globals.push_back(i);
+    ++counts.global_bodies;
+    if (!bodies[i].fixed) crossings.set(i, Scheduled<T>{});
+  }
+
+  // Schedules moving body i's next cell crossing from time `from` (its position then is inside
+  // its cell's exit box), or makes it global where double cell arithmetic cannot be trusted to
+  // an eighth of the margin until then: its position evaluated in T and in double, and the
+  // crossing's time rounded to T, each off by at most a few ulps of the terms' magnitudes.
+  void schedule_crossing(BodyIndex i, const T& from) {
+    if (cell[i] == kGlobal) return;
+    const Body& b = bodies[i];
+    const Kinematics<T> k = kinematics(b, from);
+    double lo_x, lo_y, hi_x, hi_y;
+    grid.exit_box(cell[i], lo_x, lo_y, hi_x, hi_y);
+    const double px = to_double(k.p.x), py = to_double(k.p.y), vx = to_double(k.v.x), vy = to_double(k.v.y);
+    const double ax = to_double(k.a.x), ay = to_double(k.a.y);
+    const double limit = to_double(horizon - from);
+    std::optional<double> s = earliest_exit(px, vx, ax / 2, lo_x, hi_x, limit);
+    const std::optional<double> sy = earliest_exit(py, vy, ay / 2, lo_y, hi_y, limit);
+    if (sy && (!s || *sy < *s)) s = sy;
+    using std::abs;
+    const double until = s ? *s : std::max(limit, 0.0);
+    const double tau = to_double(from - b.t0) + until;
+    const double eps = std::max(static_cast<double>(std::numeric_limits<T>::epsilon()), 0x1p-52);
+    const double speed = std::abs(vx) + std::abs(vy) + (std::abs(ax) + std::abs(ay)) * until;
+    const double scale = std::max(std::abs(lo_x), std::abs(hi_x)) + std::max(std::abs(lo_y), std::abs(hi_y)) +
+                         to_double(abs(b.p0.x) + abs(b.p0.y)) +
+                         to_double(abs(b.v0.x) + abs(b.v0.y)) * tau +
+                         to_double(abs(b.acc.x) + abs(b.acc.y)) * tau * tau / 2 +
+                         speed * (to_double(abs(from)) + until);
+    if (!(8 * eps * scale <= grid.margin() / 8)) {
+      make_global(i);
+      return;
+    }
+    Scheduled<T> e;
+    if (s) {
+      e.time = from + T(*s);
+      e.lo = e.hi = e.partner = i;
+      e.refined = true;  // not a contact
+      e.cross = true;
+    }
+    crossings.set(i, e);
+  }
+
+  // Moving body i's crossing at `at`: it moves to the cell it is in then, and is predicted
+  // against the bodies around that cell that were not around the old one. No motion changes, so
+  // nothing else is predicted again, and the predictions are made from `now` (the last event's
+  // time, at or before `at`), which the pair's paths are known from: they cannot touch before
+  // `at`, where they were not neighbours.
+  void cross(BodyIndex i, const T& at) {
+    ++counts.crossings;
+    const std::uint32_t old = cell[i];
+    const Kinematics<T> k = kinematics(bodies[i], at);
+    const std::uint32_t c = grid.cell_of(to_double(k.p.x), to_double(k.p.y));
+    if (c == kGlobal || c == old) {  // out of the grid, or not past the exit box: global
+      make_global(i);
+      reschedule(i);
+      return;
+    }
+    grid.remove(old, i);
+    grid.insert(c, i);
+    cell[i] = c;
+    Scheduled<T> best = heap.at(i);
+    next_scan();
+    auto f = [&](BodyIndex j) { offer(i, j, best); };
+    grid.visit_around(c, [&](BodyIndex j) { visit_once(i, j, f); }, old);
+    heap.set(i, best);
+    schedule_crossing(i, at);
+    if (cell[i] == kGlobal) reschedule(i);
   }
 
   // ---- Resting contact (DESIGN.md): a contact state instead of a storm of zero-time events.
@@ -521,8 +760,13 @@ template <class T> struct World<T>::Impl {
     reschedule(owner);
   }
 
-  // Initial schedule: each pair predicted once, offered to both of its bodies.
+  // Initial schedule: each pair predicted once, offered to both of its bodies (with the grid:
+  // each moving body's candidates, a pair of moving bodies predicted from both sides).
   void schedule_all() {
+    if (grid_on) {
+      for (BodyIndex i : moving) reschedule(i);
+      return;
+    }
     std::vector<Scheduled<T>> best(bodies.size());
     for (BodyIndex i = 0; i < bodies.size(); ++i) {
       for (BodyIndex j = i + 1; j < bodies.size(); ++j) {
@@ -655,6 +899,8 @@ template <class T> struct World<T>::Impl {
   T last_validated_time{};
   std::uint64_t validations = 0;
   T start_overlap_depth{};  // the scene's overlap at the start, allowed to stay (overlap_past_bound)
+  // The overlap scan is O(n^2): past this many bodies it would take longer than the run.
+  static constexpr std::size_t kValidateScanMaxBodies = 5000;
   void validate(const World& self) {
     using std::isfinite;
     if (now < last_validated_time) throw std::logic_error("PGE_VALIDATE: time went backwards");
@@ -664,7 +910,7 @@ template <class T> struct World<T>::Impl {
       if (!(isfinite(k.p.x) && isfinite(k.p.y) && isfinite(k.v.x) && isfinite(k.v.y)))
         throw std::logic_error("PGE_VALIDATE: body \"" + bodies[i].id + "\" has a non-finite state");
     }
-    if (bodies.size() <= 200 || (++validations & 1023) == 0) {
+    if (bodies.size() <= 200 || (bodies.size() <= kValidateScanMaxBodies && (++validations & 1023) == 0)) {
       const Overlap o = self.largest_overlap();
       if (overlap_past_bound(to_double(o.ulps), to_double(o.depth), to_double(start_overlap_depth)))
         throw std::logic_error("PGE_VALIDATE: bodies \"" + bodies[o.a].id + "\" and \"" + bodies[o.b].id +
@@ -677,14 +923,22 @@ template <class T> struct World<T>::Impl {
 };
 
 template <class T> World<T>::World(const Scene& scene, const WorldOptions& options) : impl_(std::make_unique<Impl>()) {
+  BroadPhase mode = options.broad_phase;
+  if (mode == BroadPhase::Auto) {
+    const char* env = std::getenv("PGE_BROAD_PHASE");
+    if (env && *env && !parse_broad_phase(env, mode))
+      throw std::invalid_argument(std::string("PGE_BROAD_PHASE: expected auto, grid or all-pairs, got \"") + env + "\"");
+  }
   if (auto problem = validate_scene(scene)) {
     std::string where = problem->body >= 0 ? "body \"" + scene.bodies[problem->body].id + "\": " : "";
     throw std::invalid_argument(where + problem->field + ": " + problem->message);
   }
-  if (scene.bodies.size() > kMaxBodiesWithoutBroadPhase)
+  if (scene.bodies.size() > kMaxBodies)
+    throw UnsupportedScene(-1, std::to_string(scene.bodies.size()) + " bodies: at most " + std::to_string(kMaxBodies));
+  if (mode == BroadPhase::AllPairs && scene.bodies.size() > kMaxBodiesWithoutBroadPhase)
     throw UnsupportedScene(-1, std::to_string(scene.bodies.size()) + " bodies: at most " +
                                    std::to_string(kMaxBodiesWithoutBroadPhase) +
-                                   " without a broad phase (every pair is predicted once at the start)");
+                                   " without the broad phase (every pair is predicted once at the start)");
   Impl& w = *impl_;
   w.horizon = T(options.until >= 0 ? options.until : scene.run.until);
   w.solver = options.solver.value_or(scene.run.solver);
@@ -725,9 +979,10 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
     w.bodies.push_back(std::move(b));
   }
   w.heap.reset(w.bodies.size(), w.moving);
+  w.setup_grid(mode);
   w.schedule_all();
 #ifdef PGE_VALIDATE
-  w.start_overlap_depth = largest_overlap().depth;
+  if (w.bodies.size() <= Impl::kValidateScanMaxBodies) w.start_overlap_depth = largest_overlap().depth;
 #endif
 }
 
@@ -756,6 +1011,16 @@ template <class T> bool World<T>::step() {
     const bool has_contact = contact && contact->valid();
     const bool has_timer = !w.timers.empty();
     const bool has_frame = w.fps > 0 && w.frame_time(w.next_frame) <= w.horizon;
+    // A cell crossing due no later than every other event is bookkeeping: no motion changes
+    // and the clock stays where it is (cross()).
+    if (w.grid_on && !w.crossings.empty() && w.crossings.top().valid()) {
+      const T at = w.crossings.top().time;
+      if (at <= w.horizon && (!has_contact || !(contact->time < at)) && (!has_timer || !(w.timers.top().time < at)) &&
+          (!has_frame || !(w.frame_time(w.next_frame) < at))) {
+        w.cross(w.crossings.top_index(), at);
+        continue;
+      }
+    }
     T best = std::numeric_limits<T>::infinity();
     EventKind kind = EventKind::Collision;
     // Robust and certified: a contact predicted just past the horizon is re-derived exactly
@@ -870,6 +1135,24 @@ template <class T> const std::vector<Vec2<T>>& World<T>::world_vertices(BodyInde
   return impl_->bodies.at(i).shape.world;
 }
 template <class T> SolverKind World<T>::solver() const { return impl_->solver; }
+template <class T> BroadPhase World<T>::broad_phase() const {
+  return impl_->grid_on ? BroadPhase::Grid : BroadPhase::AllPairs;
+}
+
+template <class T> std::size_t World<T>::memory_bytes() const {
+  const Impl& w = *impl_;
+  std::size_t bytes = sizeof(Impl) + w.bodies.capacity() * sizeof(typename Impl::Body);
+  for (const auto& b : w.bodies) {
+    const auto& s = b.shape;
+    bytes += b.id.capacity() > 15 ? b.id.capacity() + 1 : 0;
+    bytes += (s.local.capacity() + s.world.capacity() + s.edges.capacity()) * sizeof(Vec2<T>) +
+             s.edge_length.capacity() * sizeof(T);
+  }
+  bytes += w.moving.capacity() * sizeof(BodyIndex) + w.heap.memory_bytes() + w.crossings.memory_bytes();
+  bytes += w.cell.capacity() * sizeof(std::uint32_t) + w.seen.capacity() * sizeof(std::uint32_t) +
+           w.globals.capacity() * sizeof(BodyIndex) + w.grid.memory_bytes();
+  return bytes;
+}
 
 template <class T> void World<T>::set_velocity(BodyIndex i, Vec2<T> velocity) {
   Impl& w = *impl_;

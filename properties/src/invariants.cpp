@@ -83,6 +83,7 @@ InvariantReport check_invariants(const Scene& scene, const InvariantOptions& opt
   try {
     WorldOptions wo;
     wo.solver = options.solver;
+    wo.broad_phase = options.broad_phase;
     World<double> w(scene, wo);
     w.on_collision([&](const CollisionInfo<double>& c) {
       std::string detail;

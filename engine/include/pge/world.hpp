@@ -16,6 +16,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace pge {
@@ -26,11 +27,22 @@ struct UnsupportedScene : std::runtime_error {
   UnsupportedScene(int body_, const std::string& what) : std::runtime_error(what), body(body_) {}
 };
 
+// Which pairs the world predicts after an event (DESIGN.md, "Scale"). AllPairs: the moving body
+// against every body, O(n) per event. Grid: against the bodies in the cells around it
+// (broad_phase.hpp), O(1) per event for bodies of similar size. Auto: the grid from
+// kGridMinMovingBodies moving bodies on, unless the environment variable PGE_BROAD_PHASE says
+// "grid" or "all-pairs" (how the test suites are run with either).
+enum class BroadPhase : std::uint8_t { Auto, AllPairs, Grid };
+std::string_view broad_phase_name(BroadPhase b);
+// Parses "auto", "all-pairs", "grid"; false if unknown.
+bool parse_broad_phase(std::string_view text, BroadPhase& out);
+
 struct WorldOptions {
   double until = -1;              // horizon in seconds; < 0: the scene's run.until
   std::optional<SolverKind> solver;  // nothing: the scene's run.solver
   std::uint64_t max_events = 0;   // collision budget; 0: the scene's run.max_events
   double frames_per_second = -1;  // < 0: the scene's run.frames_per_second; 0: none
+  BroadPhase broad_phase = BroadPhase::Auto;
 };
 
 struct EventCounts {
@@ -44,6 +56,8 @@ struct EventCounts {
   std::uint64_t exact_predictions = 0;  // of those, near-grazes decided from the exact paths
   std::uint64_t rests = 0;        // contacts that put a body to rest on a fixed face
   std::uint64_t leaves = 0;       // resting bodies that slid off a face's end
+  std::uint64_t crossings = 0;    // broad phase: a moving body moved to another cell
+  std::uint64_t global_bodies = 0;  // broad phase: bodies the grid does not hold (broad_phase.hpp)
 };
 
 // The closed-form path the engine holds for a body: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2
@@ -119,6 +133,10 @@ template <class T> class World {
   // rounded once at construction); empty for moving bodies.
   const std::vector<Vec2<T>>& world_vertices(BodyIndex i) const;
   SolverKind solver() const;
+  BroadPhase broad_phase() const;  // AllPairs or Grid: what Auto chose
+  // Bytes the world holds for its bodies, queues and grid (capacities; shapes' vertex lists
+  // included), for the memory-per-body figures.
+  std::size_t memory_bytes() const;
   // Replaces a moving body's velocity at time() and reschedules it (for timer callbacks).
   void set_velocity(BodyIndex i, Vec2<T> velocity);
 

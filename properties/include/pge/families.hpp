@@ -36,4 +36,14 @@ struct GasParams {
 // no two overlap; elastic (restitution 1).
 Scene make_gas(const GasParams& params);
 
+// Rain on pegs (the same parameters): the discs start in the upper half of a square box at the
+// area fraction, fall under `gravity` (1 if 0) through a staggered lattice of fixed discs of the
+// same radius, 8 radii apart, that fills the lower half; elastic, so the rain never settles.
+Scene make_pegs(const GasParams& params);
+
+// A gas of polygons (the same parameters): moving squares and triangles alternately, each
+// inside a circle of the given radius and turned by a random angle, among fixed pentagons in a square box (one pentagon per
+// 16 moving bodies); the area fraction counts the circles. Elastic.
+Scene make_polygons(const GasParams& params);
+
 }  // namespace pge

@@ -56,6 +56,7 @@ struct Failure {
 struct InvariantOptions {
   SolverKind solver = SolverKind::Robust;
   bool storms_fail = false;
+  BroadPhase broad_phase = BroadPhase::Auto;
 };
 
 struct InvariantReport {
