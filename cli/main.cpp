@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   std::string broad_phase = "auto";
   run_cmd->add_option("--broad-phase", broad_phase,
                       "Which pairs are predicted: grid (the bodies in nearby cells), all-pairs (every body), or auto "
-                      "(grid from 64 moving bodies on; the PGE_BROAD_PHASE environment variable can override auto). "
+                      "(grid from 16 moving bodies on; the PGE_BROAD_PHASE environment variable can override auto). "
                       "The events are the same; only the cost differs")
       ->check(CLI::IsMember({"auto", "grid", "all-pairs"}));
   run_cmd->add_flag("--quiet,-q", run.quiet, "Print no summary (errors still go to stderr)");

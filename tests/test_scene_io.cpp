@@ -145,6 +145,27 @@ TEST(SceneIo, AwkwardDoublesAreWrittenInShortestForm) {
     EXPECT_NE(text.find(literal), std::string::npos) << literal << " not in\n" << text;
 }
 
+// A negative restitution in memory means the world's; the file leaves the key out, so the scene
+// reads back (the writer used to write -0.13, which the reader rejects as out of [0, 1]).
+TEST(SceneIo, NegativeRestitutionIsWrittenAsTheWorlds) {
+  Scene s;
+  s.world.restitution = 0.5;
+  BodyDesc b;
+  b.id = "b";
+  b.radius = 1;
+  b.restitution = -0.1326904296875;
+  s.bodies.push_back(b);
+  b.id = "c";
+  b.position = {3, 0};
+  b.restitution = -0.0;  // a restitution of its own: zero
+  s.bodies.push_back(b);
+  const LoadedScene back = parse_scene(write_scene(s), "negative-restitution.json");
+  ASSERT_EQ(back.scene.bodies.size(), 2u);
+  EXPECT_LT(back.scene.bodies[0].restitution, 0);  // the world's
+  EXPECT_EQ(back.scene.bodies[1].restitution, 0.0);
+  EXPECT_TRUE(std::signbit(back.scene.bodies[1].restitution));
+}
+
 TEST(SceneIo, RoundTripOfEmptyScene) {
   const Scene s;
   const LoadedScene back = parse_scene(write_scene(s), "empty.json");

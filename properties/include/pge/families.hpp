@@ -42,8 +42,8 @@ Scene make_gas(const GasParams& params);
 Scene make_pegs(const GasParams& params);
 
 // A gas of polygons (the same parameters): moving squares and triangles alternately, each
-// inside a circle of the given radius and turned by a random angle, among fixed pentagons in a square box (one pentagon per
-// 16 moving bodies); the area fraction counts the circles. Elastic.
+// inside a circle of the given radius and turned by a random angle, among fixed pentagons in a
+// square box (one pentagon per 16 moving bodies); the area fraction counts the circles. Elastic.
 Scene make_polygons(const GasParams& params);
 
 }  // namespace pge
