@@ -127,7 +127,7 @@ TEST_P(Families, GridGivesTheEventsOfAllPairs) {
 INSTANTIATE_TEST_SUITE_P(BroadPhase, Families,
                          ::testing::Values(FamilyCase{"gas", &make_gas, 300}, FamilyCase{"pegs", &make_pegs, 300},
                                            FamilyCase{"polygons", &make_polygons, 200}),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& param_info) { return std::string(param_info.param.name); });
 
 // Auto chooses the grid from kGridMinMovingBodies moving bodies on.
 TEST(BroadPhase, AutoChoosesByMovingBodies) {
