@@ -124,7 +124,8 @@ namespace pge {
 // Bodies a World accepts. Without the broad phase (BroadPhase::AllPairs) the first schedule
 // predicts every pair once: n (n - 1) / 2 predictions, 5e9 for 1e5 bodies (about two minutes)
 // but 5e11 for a million (hours, a hang to any user). With the grid the cost is linear, and the
-// limit is memory: about 0.5 KB per circle (World::memory_bytes), 0.5 GB for a million. Larger
+// limit is memory: about 0.75 KB per circle (World::memory_bytes: 733 to 749 bytes measured by
+// bench_scale), 0.75 GB for a million. Larger
 // scenes are refused with UnsupportedScene.
 inline constexpr std::size_t kMaxBodiesWithoutBroadPhase = 100000;
 inline constexpr std::size_t kMaxBodies = 1000000;
