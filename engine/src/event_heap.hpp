@@ -25,8 +25,6 @@ template <class T> struct Scheduled {
   // Not a contact: the owner, resting on the fixed body `partner`, slides off the end of that
   // face (support slot feature_a) at `time` (resting contact, world.cpp).
   bool leave = false;
-  // Not a contact: the owner crosses out of its broad-phase cell at `time` (broad_phase.hpp).
-  bool cross = false;
 
   bool valid() const { return lo != kNoBody; }
 

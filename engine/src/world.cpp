@@ -423,7 +423,6 @@ template <class T> struct World<T>::Impl {
     }
     const auto nx = static_cast<std::uint32_t>(std::ceil(w / side) + 4), ny = static_cast<std::uint32_t>(std::ceil(h / side) + 4);
     grid.configure(lo_x - 2 * side, lo_y - 2 * side, side, margin, nx, ny);
-    grid_radius = radius;
     seen.assign(bodies.size(), 0u);
     crossings.reset(bodies.size(), moving);
     for (std::size_t k = 0; k < moving.size(); ++k) {
@@ -462,8 +461,6 @@ template <class T> struct World<T>::Impl {
         for (std::uint32_t x = x0; x <= x1; ++x) grid.insert(y * nx + x, j);
     }
   }
-
-  double grid_radius = 0;
 
   // A fixed body's bounding box (lo x, lo y, hi x, hi y), in double.
   static std::array<double, 4> fixed_box(const Body& b) {
@@ -526,7 +523,6 @@ template <class T> struct World<T>::Impl {
       e.time = from + T(*s);
       e.lo = e.hi = e.partner = i;
       e.refined = true;  // not a contact
-      e.cross = true;
     }
     crossings.set(i, e);
   }
