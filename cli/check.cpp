@@ -263,6 +263,16 @@ int check_file(const std::string& file, const CheckOptions& opt, const std::stri
 
 }  // namespace
 
+SceneCheck judged_run(const LoadedScene& loaded, SolverKind solver, const std::string& scalar, double until,
+                      std::uint64_t max_events) {
+  CheckOptions opt;
+  opt.scalar = scalar;
+  opt.until = until;
+  opt.max_events = max_events;
+  Progress quiet;
+  return check_any(loaded, Expect{}, solver, ExpectOutcome{}, opt, quiet);
+}
+
 int check_command(const CheckOptions& opt) {
   std::vector<std::string> files;
   try {

@@ -2,6 +2,9 @@
 // each run to its scene's expect block (fixtures/README.md, "Expectations").
 #pragma once
 
+#include "pge/roots.hpp"
+#include "pge/scene_io.hpp"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,5 +27,12 @@ struct CheckOptions {
 };
 
 int check_command(const CheckOptions& options);
+
+struct SceneCheck;
+// One run of `loaded` with `solver` in `scalar`, every event judged by the oracle, without an
+// expect block and without printing: what `pge report` measures accuracy with. Throws what the
+// engine throws (UnsupportedScene, std::invalid_argument, std::logic_error from validation).
+SceneCheck judged_run(const LoadedScene& loaded, SolverKind solver, const std::string& scalar, double until,
+                      std::uint64_t max_events);
 
 }  // namespace pge::cli

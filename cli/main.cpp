@@ -1,8 +1,11 @@
 // The `pge` command.
 #include "check.hpp"
+#include "compare.hpp"
 #include "exit_codes.hpp"
 #include "fuzz.hpp"
 #include "generate.hpp"
+#include "render.hpp"
+#include "report.hpp"
 #include "run.hpp"
 
 #include <CLI/CLI.hpp>
@@ -31,6 +34,19 @@ const CLI::Validator kNonNegative(
                                                                                : "must be a number >= 0, got " + text;
     },
     "NONNEGATIVE");
+
+// "i/n" with 0 <= i < n; false otherwise.
+bool parse_shard(const std::string& text, unsigned& shard, unsigned& shards) {
+  char slash = 0;
+  std::istringstream in(text);
+  return (in >> shard >> slash >> shards) && slash == '/' && shards > 0 && shard < shards && in.eof();
+}
+
+std::string command_line(int argc, char** argv) {
+  std::string out = "pge";
+  for (int i = 1; i < argc; ++i) out += std::string(" ") + argv[i];
+  return out;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -148,6 +164,134 @@ int main(int argc, char** argv) {
   gen_cmd->add_option("--seed", gen.gas.seed, "Seed of the generator");
   gen_cmd->add_option("-o,--out", gen.out, "Output file (default: stdout)");
 
+  ReportOptions report;
+  std::string report_shard = "0/1";
+  CLI::App* report_cmd = app.add_subcommand(
+      "report",
+      "The accuracy report: every solver x scalar over the fixture families and random scenes; speed (engine alone) "
+      "against error (exact oracle); writes report.md, index.html (self-contained, plots by gnuplot), results.json "
+      "and results.csv.");
+  report_cmd->footer(std::string(
+      "Parts: accuracy (each scene judged by the oracle, then timed alone), scaling (the elastic gas at\n"
+      "  several sizes, timed), drift (energy along one long gas run), peers (the pge compare scenes,\n"
+      "  fixtures/scenes/peers, by PGE in double and by Box2D and Chipmunk at every setting; full report\n"
+      "  only, unless --parts names it). Quick: 500 events per scene, 12\n"
+      "  random scenes, gas at 100 and 1,000, a 20,000-event drift run (about 2 minutes). Full: 2,000\n"
+      "  events, 100 random scenes, gas up to 10,000, 200,000 events of drift.\n"
+      "Sharding: --shard i/n runs every n-th item from i and writes results.json only; join the shards\n"
+      "  with --merge DIR... --out DIR, which writes the pages.\n") + kExitCodeHelp);
+  report_cmd->add_option("--out,-o", report.out, "Output directory")->capture_default_str();
+  report_cmd->add_flag("--quick", report.quick, "The quick sweep (CI's gate): fewer events, scenes and sizes");
+  report_cmd->add_option("--scenes", report.scenes,
+                         "Scene files or directories instead of the bundled families (fixtures/scenes/* but long and peers)");
+  report_cmd->add_option("--peer-scenes", report.peer_scenes,
+                         "Scene files or directories for the peers part instead of fixtures/scenes/peers");
+  report_cmd->add_option("--random", report.random, "Random scenes from pge fuzz's generator (default: 12 quick, 100 full)")
+      ->check(CLI::Range(0, 100000));
+  report_cmd->add_option("--seed", report.seed, "Seed of the random scenes")->capture_default_str();
+  report_cmd->add_option("--solvers", report.solvers, "Solvers to run (default: fast robust certified)")
+      ->check(CLI::IsMember({"fast", "robust", "certified"}))
+      ->delimiter(',');
+  report_cmd->add_option("--scalars", report.scalars, "Scalars to run (default: float double long-double quad)")
+      ->check(CLI::IsMember({"float", "double", "long-double", "quad"}))
+      ->delimiter(',');
+  report_cmd->add_option("--parts", report.parts, "Parts to run (default: accuracy scaling drift, and peers in the full report)")
+      ->check(CLI::IsMember({"accuracy", "scaling", "drift", "peers"}))
+      ->delimiter(',');
+  report_cmd->add_option("--max-events", report.max_events, "Contact events per accuracy scene, at most the scene's own (default: 500 quick, 2,000 full)")
+      ->check(kPositive);
+  report_cmd->add_option("--repeats", report.repeats, "Timed runs per row, at least (default: 3 quick, 5 full; the median counts)")
+      ->check(CLI::Range(1u, 1000u));
+  report_cmd->add_option("--shard", report_shard, "i/n: run the i-th of n disjoint parts (0-based); results.json only");
+  report_cmd->add_option("--merge", report.merge, "Merge shards' results (directories holding results.json, or files) into --out");
+  report_cmd->add_flag("--allow-partial", report.allow_partial, "With --merge: merge even when shards are missing");
+  report_cmd->add_option("--inject-regression", report.inject,
+                         "For testing the gate: fast-solver (every run uses the fast solver, labels unchanged) or slow "
+                         "(every timed run does its work four times)")
+      ->check(CLI::IsMember({"fast-solver", "slow"}));
+  report_cmd->add_flag("--quiet,-q", report.quiet, "Print nothing but errors");
+  report_cmd->add_flag("--progress", report.progress, "Show progress on stderr (default: only when stderr is a terminal)");
+
+  GateOptions gate;
+  CLI::App* gate_cmd = app.add_subcommand(
+      "gate",
+      "The CI gate: compare results with the committed baseline, metric by metric; print a Markdown summary, write "
+      "JUnit XML; exit 9 on a regression, 10 when results or baseline are missing or corrupt.");
+  gate_cmd->footer(std::string(
+      "Without --results the gate measures now, with the baseline's sweep (quick or full) and seed, into\n"
+      "  OUT/report (without a readable baseline, with --update: the quick sweep, or --full).\n"
+      "  Checks per scene x configuration: misses, phantoms and misorders may not grow; largest\n"
+      "  and p99 |time error| in ulps, energy and momentum drift may grow to --error-factor x the baseline\n"
+      "  (with floors: 4 ulps, 64 epsilon of the scalar); the run must stop as before. Speed per\n"
+      "  configuration: the geometric mean over its scenes of its wall time relative to the reference\n"
+      "  configuration's (robust/double) on the same scene in the same run, against the baseline's, may\n"
+      "  grow to --speed-factor; the reference's own wall time over a calibration workload (a fixed loop\n"
+      "  timed in the same process) to --calibrated-factor. Speed is compared only between like builds\n"
+      "  (build type, validation, sanitizers).\n"
+      "  A baseline row missing from the results fails (closed).\n") + kExitCodeHelp);
+  gate_cmd->add_option("--baseline", gate.baseline, "The committed baseline (results.json format)")->capture_default_str();
+  gate_cmd->add_option("--results", gate.results, "Results to judge (results.json or its directory); default: measure now");
+  gate_cmd->add_option("--out", gate.out, "Directory for a measured report, gate.md and gate.junit.xml")->capture_default_str();
+  gate_cmd->add_option("--junit", gate.junit, "JUnit XML file (default: OUT/gate.junit.xml)");
+  gate_cmd->add_option("--summary", gate.summary, "Markdown summary file (default: OUT/gate.md; also printed)");
+  gate_cmd->add_flag("--update", gate.update, "Write the results as the new baseline (on purpose: commit it with the change)");
+  gate_cmd->add_flag("--full", gate.full,
+                     "When measuring without a readable baseline (a first --update): the full sweep (default: quick; "
+                     "otherwise the baseline's sweep is measured)");
+  gate_cmd->add_option("--error-factor", gate.policy.error_factor, "How far errors and drifts may grow")
+      ->check(kPositive)
+      ->capture_default_str();
+  gate_cmd->add_option("--speed-factor", gate.policy.speed_factor,
+                       "How far a configuration's time relative to the reference configuration may grow")
+      ->check(kPositive)
+      ->capture_default_str();
+  gate_cmd->add_option("--calibrated-factor", gate.policy.calibrated_factor,
+                       "How far the reference configuration's wall time over the calibration workload may grow")
+      ->check(kPositive)
+      ->capture_default_str();
+  gate_cmd->add_option("--reference", gate.policy.reference, "The reference configuration, solver/scalar")
+      ->capture_default_str();
+  gate_cmd->add_option("--inject-regression", gate.report.inject,
+                       "When measuring: a deliberate regression (fast-solver, slow), to see the gate fail")
+      ->check(CLI::IsMember({"fast-solver", "slow"}));
+  gate_cmd->add_option("--scenes", gate.report.scenes, "When measuring: scene files or directories (as pge report)");
+  gate_cmd->add_option("--random", gate.report.random, "When measuring: random scenes (as pge report)")->check(CLI::Range(0, 100000));
+  gate_cmd->add_option("--solvers", gate.report.solvers, "When measuring: solvers (as pge report)")
+      ->check(CLI::IsMember({"fast", "robust", "certified"}))
+      ->delimiter(',');
+  gate_cmd->add_option("--scalars", gate.report.scalars, "When measuring: scalars (as pge report)")
+      ->check(CLI::IsMember({"float", "double", "long-double", "quad"}))
+      ->delimiter(',');
+  gate_cmd->add_option("--parts", gate.report.parts, "When measuring: parts (as pge report)")
+      ->check(CLI::IsMember({"accuracy", "scaling", "drift", "peers"}))
+      ->delimiter(',');
+  gate_cmd->add_flag("--progress", gate.report.progress, "Show the measuring's progress on stderr");
+
+  CompareOptions compare;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare",
+      "One scene run by PGE (robust and certified, double) and by Box2D and Chipmunk at several step rates and "
+      "iteration counts: wall time, energy and momentum drift, penetration, tunnelling, final-state error against "
+      "PGE certified (a Markdown table).");
+  compare_cmd->add_option("scene", compare.scene, "A scene file (pge-scene/1 JSON)")->required();
+  compare_cmd->add_option("--peers", compare.peers, "Peers beside PGE: box2d, chipmunk")->delimiter(',')->capture_default_str();
+  compare_cmd->add_option("--until", compare.until, "Simulated seconds (default: the scene's run.until)")->check(kPositive);
+  compare_cmd->add_option("--json", compare.json, "Also write the rows as JSON to this file");
+  compare_cmd->add_flag("--quiet,-q", compare.quiet, "No table on stdout");
+
+  RenderOptions render;
+  CLI::App* render_cmd = app.add_subcommand(
+      "render", "A picture of a scene and its trajectory, collision points marked: FILE.svg, or FILE.html (animated).");
+  render_cmd->add_option("scene", render.scene, "A scene file (pge-scene/1 JSON)")->required();
+  render_cmd->add_option("-o,--out", render.out, "Output: FILE.svg or FILE.html")->required();
+  render_cmd->add_option("--until", render.until, "Simulated seconds (default: the scene's run.until)")->check(kPositive);
+  render_cmd->add_option("--max-events", render.max_events, "Stop after this many collisions (default: the scene's)")
+      ->check(kPositive);
+  render_cmd->add_option("--solver", render.solver, "Root solver (default: the scene's run.solver)")
+      ->check(CLI::IsMember({"fast", "robust", "certified"}));
+  render_cmd->add_option("--frames", render.frames, "Trajectory samples per simulated second")->check(kPositive)->capture_default_str();
+  render_cmd->add_flag("--quiet,-q", render.quiet, "Print no summary line");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -180,11 +324,28 @@ int main(int argc, char** argv) {
       return check_command(check);
     }
     if (gen_cmd->parsed()) return generate_command(gen);
+    if (report_cmd->parsed()) {
+      if (!parse_shard(report_shard, report.shard, report.shards)) {
+        fmt::print(stderr, "pge: --shard: expected i/n with 0 <= i < n, got {} (see --help)\n", report_shard);
+        return kExitUsage;
+      }
+      if (!report.merge.empty() && report.shards > 1) {
+        fmt::print(stderr, "pge: --merge and --shard do not go together (see --help)\n");
+        return kExitUsage;
+      }
+      if (!report.progress) report.progress = isatty(fileno(stderr)) != 0 && !report.quiet;
+      report.command = command_line(argc, argv);
+      return report_command(report);
+    }
+    if (gate_cmd->parsed()) {
+      gate.report.command = command_line(argc, argv);
+      return gate_command(gate);
+    }
+    if (render_cmd->parsed()) return render_command(render);
+    if (compare_cmd->parsed()) return compare_command(compare);
     if (fuzz_cmd->parsed()) {
       unsigned shard = 0, shards = 0;
-      char slash = 0;
-      std::istringstream in(fuzz_shard);
-      if (!(in >> shard >> slash >> shards) || slash != '/' || shards == 0 || shard >= shards || !in.eof()) {
+      if (!parse_shard(fuzz_shard, shard, shards)) {
         fmt::print(stderr, "pge: --shard: expected i/n with 0 <= i < n, got {} (see --help)\n", fuzz_shard);
         return kExitUsage;
       }

@@ -5,8 +5,8 @@
 #   1  a package could not be installed (the message says which and why)
 #   2  not a Debian-like system with apt-get and dpkg-query
 # Usage: scripts/install-deps.sh [--with-optional]
-#   --with-optional  also installs packages used only by optional commands
-#                    (gnuplot-nox for report plots).
+#   --with-optional  also installs packages used only by optional commands (none today: the
+#                    report's plots need gnuplot-nox and its test Chromium, both required).
 set -euo pipefail
 
 required=(
@@ -14,12 +14,16 @@ required=(
   libboost-dev libgmp-dev libmpfr-dev libmpfi-dev libcgal-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
+  gnuplot-nox chromium python3 libbox2d-dev libchipmunk-dev
 )
-optional=(gnuplot-nox)
+# gnuplot-nox draws the report's plots; chromium loads the report's page in a test (headless);
+# python3 checks XML and JSON in the command-line tests; Box2D and Chipmunk are the peers of
+# `pge compare` (without them it skips them and says so).
+optional=()
 
 packages=("${required[@]}")
 if [[ "${1:-}" == "--with-optional" ]]; then
-  packages+=("${optional[@]}")
+  packages+=(${optional[@]+"${optional[@]}"})
 elif [[ $# -gt 0 ]]; then
   echo "install-deps: unknown argument '$1' (use --with-optional or nothing)" >&2
   exit 2

@@ -1,0 +1,170 @@
+// Box2D 2.4.1 as a peer (peer_sim.hpp). Box2D computes in float: the scene's doubles are rounded
+// once on the way in and the state read back as float, which bounds its accuracy near 6e-8 of
+// the scene's coordinates however small the step.
+#include "peer_sim.hpp"
+
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+namespace pge::peers::detail {
+namespace {
+
+// Restitution of a pair = the smaller of the two (PGE's rule; Box2D's own mix is the larger),
+// applied at every approach speed (threshold 0; Box2D's default, 1 m/s, makes slower contacts
+// perfectly inelastic).
+class MinRestitution : public b2ContactListener {
+ public:
+  void PreSolve(b2Contact* contact, const b2Manifold*) override {
+    contact->SetRestitution(std::min(contact->GetFixtureA()->GetRestitution(), contact->GetFixtureB()->GetRestitution()));
+    contact->SetRestitutionThreshold(0.0f);
+  }
+};
+
+b2Vec2 to_b2(Vec2d v, double scale) {
+  return {static_cast<float>(v.x * scale), static_cast<float>(v.y * scale)};
+}
+
+class Box2dSim final : public PeerSim {
+ public:
+  Box2dSim(const Scene& scene, const Setting& setting)
+      : scene_(scene), setting_(setting), scale_(box2d_length_scale(scene, setting.hz)), world_(b2Vec2(0.0f, 0.0f)) {
+    world_.SetAllowSleeping(false);
+    world_.SetContinuousPhysics(true);
+    world_.SetSubStepping(false);
+    world_.SetWarmStarting(true);
+    world_.SetContactListener(&listener_);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) add_body(i);
+  }
+
+  void step(double dt) override {
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      const BodyDesc& d = scene_.bodies[i];
+      if (d.fixed) continue;
+      const Vec2d f = field_acceleration(scene_, d) * (d.mass * scale_);
+      if (f.x != 0 || f.y != 0) bodies_[i]->ApplyForceToCenter(to_b2(f, 1.0), true);
+    }
+    world_.Step(static_cast<float>(dt), setting_.velocity_iterations, setting_.position_iterations);
+  }
+
+  Vec2d position(std::size_t i) const override {
+    const b2Vec2 p = bodies_[i]->GetPosition();
+    return {static_cast<double>(p.x) / scale_, static_cast<double>(p.y) / scale_};
+  }
+  Vec2d velocity(std::size_t i) const override {
+    const b2Vec2 v = bodies_[i]->GetLinearVelocity();
+    return {static_cast<double>(v.x) / scale_, static_cast<double>(v.y) / scale_};
+  }
+
+  void touching_pairs(std::vector<std::pair<std::size_t, std::size_t>>& out) const override {
+    out.clear();
+    for (b2Contact* c = world_.GetContactList(); c; c = c->GetNext()) {
+      if (!c->IsTouching()) continue;
+      const auto a = static_cast<std::size_t>(c->GetFixtureA()->GetUserData().pointer - 1);
+      const auto b = static_cast<std::size_t>(c->GetFixtureB()->GetUserData().pointer - 1);
+      out.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+
+ private:
+  void add_body(std::size_t i) {
+    const BodyDesc& d = scene_.bodies[i];
+    b2BodyDef bd;
+    bd.type = d.fixed ? b2_staticBody : b2_dynamicBody;
+    bd.position = to_b2(d.position, scale_);
+    bd.linearVelocity = d.fixed ? b2Vec2(0.0f, 0.0f) : to_b2(d.velocity, scale_);
+    bd.fixedRotation = true;   // PGE bodies translate only
+    bd.bullet = !d.fixed;      // continuous collision against moving bodies as well as static ones
+    bd.allowSleep = false;
+    bd.linearDamping = 0.0f;
+    bd.angularDamping = 0.0f;
+    bd.gravityScale = 0.0f;    // gravity comes as a force, with each body's own acceleration
+    b2Body* body = world_.CreateBody(&bd);
+    bodies_.push_back(body);
+
+    b2FixtureDef fd;
+    fd.friction = 0.0f;
+    fd.restitution = static_cast<float>(restitution_of(scene_, d));
+    fd.restitutionThreshold = 0.0f;
+    fd.density = 0.0f;  // the mass is set below, as the scene gives it
+    fd.userData.pointer = static_cast<std::uintptr_t>(i + 1);
+    b2CircleShape circle;
+    b2PolygonShape polygon;
+    b2EdgeShape edge;
+    switch (d.shape) {
+      case ShapeKind::Circle:
+        circle.m_radius = static_cast<float>(d.radius * scale_);
+        fd.shape = &circle;
+        break;
+      case ShapeKind::Polygon: {
+        if (d.vertices.size() > static_cast<std::size_t>(b2_maxPolygonVertices))
+          throw PeerUnsupported("body \"" + d.id + "\": a polygon of " + std::to_string(d.vertices.size()) +
+                                " vertices; Box2D takes at most b2_maxPolygonVertices = " +
+                                std::to_string(b2_maxPolygonVertices));
+        std::vector<b2Vec2> v;
+        for (const Vec2d& p : d.vertices) v.push_back(to_b2(p, scale_));
+        polygon.Set(v.data(), static_cast<int32>(v.size()));
+        if (polygon.m_count != static_cast<int32>(v.size()))
+          throw PeerUnsupported("body \"" + d.id + "\": Box2D merged vertices of this polygon closer than its "
+                                "b2_linearSlop at the chosen scale");
+        fd.shape = &polygon;
+        break;
+      }
+      case ShapeKind::Segment:
+        edge.SetTwoSided(to_b2(d.a, scale_), to_b2(d.b, scale_));
+        fd.shape = &edge;
+        break;
+    }
+    body->CreateFixture(&fd);
+    if (!d.fixed) {
+      b2MassData md;
+      md.mass = static_cast<float>(d.mass);
+      md.center = b2Vec2(0.0f, 0.0f);  // the reference point: forces act there, nothing turns
+      md.I = 0.0f;
+      body->SetMassData(&md);
+    }
+  }
+
+  const Scene& scene_;
+  Setting setting_;
+  double scale_;
+  mutable b2World world_;  // mutable: b2Fixture::GetUserData has no const overload
+  MinRestitution listener_;
+  std::vector<b2Body*> bodies_;
+};
+
+}  // namespace
+
+double box2d_length_scale(const Scene& scene, double hz) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double smallest = inf, fastest = 0, shortest_side = inf;
+  const double extent = scene_extent(scene);
+  for (const BodyDesc& b : scene.bodies) {
+    for (std::size_t k = 0; k < b.vertices.size(); ++k)
+      shortest_side = std::min(shortest_side, std::hypot(b.vertices[(k + 1) % b.vertices.size()].x - b.vertices[k].x,
+                                                         b.vertices[(k + 1) % b.vertices.size()].y - b.vertices[k].y));
+    if (b.fixed) continue;
+    smallest = std::min(smallest, b.shape == ShapeKind::Segment ? std::hypot(b.b.x - b.a.x, b.b.y - b.a.y) : body_size(b));
+    fastest = std::max(fastest, std::sqrt(dot(b.velocity, b.velocity) + 2 * std::hypot(field_acceleration(scene, b).x,
+                                                                                      field_acceleration(scene, b).y) * extent));
+  }
+  double scale = std::isfinite(smallest) && smallest > 0 ? 1 / smallest : 1.0;
+  if (fastest > 0) scale = std::min(scale, hz / fastest);  // at most 1 length unit per step
+  // But every polygon side at least b2_linearSlop: Box2D welds closer vertices (and asserts on
+  // the degenerate hull). The shape wins over the speed: a faster body is then capped by
+  // b2_maxTranslation, which the measures show.
+  scale = std::exp2(std::floor(std::log2(scale)));
+  if (std::isfinite(shortest_side) && scale * shortest_side < static_cast<double>(b2_linearSlop))
+    scale = std::exp2(std::ceil(std::log2(static_cast<double>(b2_linearSlop) / shortest_side)));
+  return scale;
+}
+
+std::unique_ptr<PeerSim> make_box2d(const Scene& scene, const Setting& setting) {
+  return std::make_unique<Box2dSim>(scene, setting);
+}
+
+}  // namespace pge::peers::detail

@@ -1,0 +1,57 @@
+// What peers.cpp needs from a fixed-step engine: step, read back, list touching pairs. One
+// implementation per peer (box2d_sim.cpp, chipmunk_sim.cpp), compiled only where it is installed.
+#pragma once
+
+#include "pge/peers.hpp"
+#include "pge/scene.hpp"
+
+#include <cstddef>
+#include <memory>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace pge::peers::detail {
+
+// A scene a peer cannot take (what() says which body and why).
+struct PeerUnsupported : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class PeerSim {
+ public:
+  virtual ~PeerSim() = default;
+  // One step of dt simulated seconds, each moving body pushed by the constant force m (g + a).
+  virtual void step(double dt) = 0;
+  // Scene units, body i of the scene (fixed bodies: where they were put).
+  virtual Vec2d position(std::size_t i) const = 0;
+  virtual Vec2d velocity(std::size_t i) const = 0;
+  // The pairs of scene bodies the engine holds as touching after the last step (lower index first).
+  virtual void touching_pairs(std::vector<std::pair<std::size_t, std::size_t>>& out) const = 0;
+};
+
+// The acceleration field of a moving body: world gravity if it takes it, plus its own.
+inline Vec2d field_acceleration(const Scene& scene, const BodyDesc& b) {
+  return (b.gravity ? scene.world.gravity : Vec2d{}) + b.acceleration;
+}
+// A body's restitution as PGE resolves it (< 0: the world's).
+inline double restitution_of(const Scene& scene, const BodyDesc& b) {
+  return b.restitution < 0 ? scene.world.restitution : b.restitution;
+}
+
+// Both throw PeerUnsupported for a scene the peer cannot take.
+std::unique_ptr<PeerSim> make_box2d(const Scene& scene, const Setting& setting);
+std::unique_ptr<PeerSim> make_chipmunk(const Scene& scene, const Setting& setting);
+
+// Box2D's lengths are compile-time constants in metres (box2d/b2_common.h, b2_lengthUnitsPerMeter
+// = 1): b2_linearSlop 0.005 (overlap the solver leaves alone), b2_polygonRadius 0.01 (a skin
+// around polygons and edges), b2_maxTranslation 2 (no body moves more per step: a speed cap of
+// 2 hz), b2_aabbExtension 0.1. The scene is therefore scaled by a power of two (exact in binary)
+// chosen so that the smallest moving body has a radius of about 1 (slop and skin then are 0.5%
+// and 1% of it) unless that would let the fastest body move more than 1 (half the cap) per step.
+// The fastest speed is estimated from energy: sqrt(|v|^2 + 2 |field acceleration| * extent).
+// Every polygon side must stay at least b2_linearSlop long (Box2D welds closer vertices): where
+// that needs a larger scale, the shape wins and the speed cap shows in the measures.
+double box2d_length_scale(const Scene& scene, double hz);
+
+}  // namespace pge::peers::detail

@@ -1,0 +1,407 @@
+// Settings, the shared measures, and the run loops for PGE and the fixed-step peers.
+#include "pge/peers.hpp"
+
+#include "peer_sim.hpp"
+#include "pge/world.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace pge::peers {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using detail::field_acceleration;
+
+// Steps per simulated second and (velocity, position) iterations offered by default: each peer's
+// own default iteration count and a high one, at a game's 60 Hz, 240 Hz and 1 kHz.
+constexpr double kRates[] = {60, 240, 1000};
+constexpr int kBox2dDefault[2] = {8, 3}, kBox2dHigh[2] = {50, 20};
+constexpr int kChipmunkDefault = 10, kChipmunkHigh = 50;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Totals {
+  double energy = 0;
+  Vec2d momentum;
+};
+
+// Kinetic + potential energy (potential -m a . p of each body's field, as World measures it) and
+// momentum of the moving bodies.
+Totals totals(const Scene& scene, const std::vector<Vec2d>& p, const std::vector<Vec2d>& v) {
+  Totals t;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDesc& b = scene.bodies[i];
+    if (b.fixed) continue;
+    t.energy += 0.5 * b.mass * dot(v[i], v[i]) - b.mass * dot(field_acceleration(scene, b), p[i]);
+    t.momentum += v[i] * b.mass;
+  }
+  return t;
+}
+
+double length(Vec2d v) { return std::hypot(v.x, v.y); }
+
+void set_drifts(Outcome& o, const Totals& start, const Totals& end) {
+  const double de = end.energy - start.energy;
+  o.energy_drift = start.energy != 0 ? de / std::abs(start.energy) : (de == 0 ? 0.0 : kInf);
+  const double dp = length(end.momentum - start.momentum), p0 = length(start.momentum);
+  o.momentum_drift = p0 != 0 ? dp / p0 : (dp == 0 ? 0.0 : kInf);
+}
+
+// A shape placed in the world: a circle, or a convex polygon (a segment: 2 vertices).
+struct Placed {
+  bool circle = false;
+  Vec2d centre;
+  double radius = 0;
+  std::vector<Vec2d> v;
+};
+
+Placed place(const BodyDesc& b, Vec2d at) {
+  Placed s;
+  switch (b.shape) {
+    case ShapeKind::Circle: s.circle = true; s.centre = at; s.radius = b.radius; break;
+    case ShapeKind::Segment: s.v = {b.a + at, b.b + at}; break;
+    case ShapeKind::Polygon: for (const Vec2d& p : b.vertices) s.v.push_back(p + at); break;
+  }
+  return s;
+}
+
+// Distance from p to the segment [a, b].
+double segment_distance(Vec2d p, Vec2d a, Vec2d b) {
+  const Vec2d ab = b - a;
+  const double len2 = dot(ab, ab);
+  const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return length(p - (a + ab * t));
+}
+
+// Signed distance from p to a convex polygon (counter-clockwise; negative inside) or a segment.
+double signed_distance(Vec2d p, const std::vector<Vec2d>& v) {
+  double outside = kInf;
+  for (std::size_t k = 0; k < v.size(); ++k) outside = std::min(outside, segment_distance(p, v[k], v[(k + 1) % v.size()]));
+  if (v.size() < 3) return outside;
+  double inside = kInf;  // depth below the nearest side line, if inside every side
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const Vec2d e = v[(k + 1) % v.size()] - v[k];
+    const double s = cross(e, p - v[k]) / length(e);  // > 0: on the inner side
+    if (s < 0) return outside;
+    inside = std::min(inside, s);
+  }
+  return -inside;
+}
+
+// Separating-axis depth of two convex vertex lists (segments included): the smallest overlap of
+// their projections over the side normals of both; 0 if some axis separates them.
+double sat_depth(const std::vector<Vec2d>& a, const std::vector<Vec2d>& b) {
+  double depth = kInf;
+  for (const auto* shape : {&a, &b})
+    for (std::size_t k = 0; k < shape->size(); ++k) {
+      const Vec2d e = (*shape)[(k + 1) % shape->size()] - (*shape)[k];
+      const Vec2d n = perp(e) * (1 / length(e));
+      double a0 = kInf, a1 = -kInf, b0 = kInf, b1 = -kInf;
+      for (const Vec2d& p : a) a0 = std::min(a0, dot(p, n)), a1 = std::max(a1, dot(p, n));
+      for (const Vec2d& p : b) b0 = std::min(b0, dot(p, n)), b1 = std::max(b1, dot(p, n));
+      depth = std::min(depth, std::min(a1, b1) - std::max(a0, b0));
+      if (depth <= 0) return 0;
+    }
+  return depth;
+}
+
+bool segments_cross(Vec2d p0, Vec2d p1, Vec2d a, Vec2d b) {
+  const double d1 = cross(p1 - p0, a - p0), d2 = cross(p1 - p0, b - p0);
+  const double d3 = cross(b - a, p0 - a), d4 = cross(b - a, p1 - a);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
+}
+
+struct Box {
+  Vec2d lo{kInf, kInf}, hi{-kInf, -kInf};
+  void add(Vec2d p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  bool contains(Vec2d p) const { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; }
+};
+
+void add_shape(Box& box, const BodyDesc& b, Vec2d at) {
+  const Placed s = place(b, at);
+  if (s.circle) {
+    box.add(s.centre - Vec2d{s.radius, s.radius});
+    box.add(s.centre + Vec2d{s.radius, s.radius});
+  }
+  for (const Vec2d& p : s.v) box.add(p);
+}
+
+// The end test of tunnelling, for every engine: a moving body whose reference point started
+// inside the bounding box of the fixed bodies and ended outside it, or ended inside a fixed
+// polygon or circle.
+bool escaped(const Scene& scene, const Box& fixed_box, std::size_t i, Vec2d end) {
+  if (fixed_box.contains(scene.bodies[i].position) && !fixed_box.contains(end)) return true;
+  for (const BodyDesc& f : scene.bodies) {
+    if (!f.fixed) continue;
+    const Placed s = place(f, f.position);
+    if (s.circle ? length(end - s.centre) < s.radius : (s.v.size() > 2 && signed_distance(end, s.v) < 0)) return true;
+  }
+  return false;
+}
+
+Box fixed_bounds(const Scene& scene) {
+  Box box;
+  for (const BodyDesc& b : scene.bodies)
+    if (b.fixed) add_shape(box, b, b.position);
+  return box;
+}
+
+double resolve_horizon(const Scene& scene, double horizon) { return horizon > 0 ? horizon : scene.run.until; }
+
+Outcome run_pge(const Scene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference) {
+  Outcome o;
+  WorldOptions wo;
+  wo.until = horizon;
+  wo.max_events = std::numeric_limits<std::uint64_t>::max();  // to the horizon, as the peers run
+  wo.frames_per_second = 0;
+  SolverKind kind{};
+  if (!parse_solver_kind(s.solver, kind)) throw std::invalid_argument("unknown PGE solver \"" + s.solver + "\"");
+  wo.solver = kind;
+  if (!s.scalar.empty() && s.scalar != "double")
+    throw std::invalid_argument("pge rows run in double only, not \"" + s.scalar + "\"");
+  World<double> world(scene, wo);
+  const double e0 = world.kinetic_energy() + world.potential_energy();
+  const Vec2d p0 = world.momentum();
+  const auto t0 = Clock::now();
+  while (world.step()) {
+  }
+  o.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (world.stop_reason() == StopReason::EventStorm) o.error = "event storm";
+  const double e1 = world.kinetic_energy() + world.potential_energy();
+  set_drifts(o, {e0, p0}, {e1, world.momentum()});
+  o.penetration = world.largest_contact_overlap().relative;
+  std::vector<Vec2d> end(scene.bodies.size());
+  const Box box = fixed_bounds(scene);
+  for (std::size_t i = 0; i < end.size(); ++i) {
+    end[i] = world.snapshot(static_cast<BodyIndex>(i)).position;
+    if (!scene.bodies[i].fixed && escaped(scene, box, i, end[i])) ++o.tunnelled;
+  }
+  o.final_error = rms_error(scene, end, reference, scene_extent(scene));
+  return o;
+}
+
+Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference) {
+  Outcome o;
+  if (!(s.hz > 0)) throw std::invalid_argument("a peer setting needs a step rate (hz > 0)");
+  std::unique_ptr<detail::PeerSim> sim;
+#ifdef PGE_HAVE_BOX2D
+  if (s.engine == "box2d") sim = detail::make_box2d(scene, s);
+#endif
+#ifdef PGE_HAVE_CHIPMUNK
+  if (s.engine == "chipmunk") sim = detail::make_chipmunk(scene, s);
+#endif
+  if (!sim) throw std::logic_error("no adapter for engine \"" + s.engine + "\"");
+  const std::size_t n = scene.bodies.size();
+  std::vector<Vec2d> p(n), v(n);
+  for (std::size_t i = 0; i < n; ++i) p[i] = scene.bodies[i].position, v[i] = scene.bodies[i].fixed ? Vec2d{} : scene.bodies[i].velocity;
+  const Totals start = totals(scene, p, v);
+  const auto steps = static_cast<std::uint64_t>(std::max(1.0, std::round(horizon * s.hz)));
+  const double dt = horizon / static_cast<double>(steps);
+  std::vector<std::size_t> moving, fixed;
+  for (std::size_t i = 0; i < n; ++i) (scene.bodies[i].fixed ? fixed : moving).push_back(i);
+  std::vector<char> crossed(n, 0);
+  std::vector<std::pair<std::size_t, std::size_t>> touching;
+  std::vector<Vec2d> prev = p;
+  double wall = 0;
+  for (std::uint64_t k = 0; k < steps; ++k) {
+    const auto t0 = Clock::now();
+    sim->step(dt);
+    wall += std::chrono::duration<double>(Clock::now() - t0).count();
+    for (std::size_t i : moving) p[i] = sim->position(i);
+    sim->touching_pairs(touching);
+    for (const auto& [a, b] : touching) {
+      const double depth = overlap_depth(scene.bodies[a], p[a], scene.bodies[b], p[b]);
+      if (depth > 0) o.penetration = std::max(o.penetration, depth / std::min(body_size(scene.bodies[a]), body_size(scene.bodies[b])));
+    }
+    for (std::size_t i : moving) {
+      if (!crossed[i])
+        for (std::size_t f : fixed)
+          if (crosses_fixed(scene.bodies[f], prev[i], p[i])) {
+            crossed[i] = 1;
+            break;
+          }
+      prev[i] = p[i];
+    }
+  }
+  o.wall_seconds = wall;
+  for (std::size_t i : moving) v[i] = sim->velocity(i);
+  set_drifts(o, start, totals(scene, p, v));
+  const Box box = fixed_bounds(scene);
+  for (std::size_t i : moving)
+    if (crossed[i] || escaped(scene, box, i, p[i])) ++o.tunnelled;
+  o.final_error = rms_error(scene, p, reference, scene_extent(scene));
+  return o;
+}
+
+std::string iterations_label(const Setting& s) {
+  if (s.engine == "box2d") return std::to_string(s.velocity_iterations) + "+" + std::to_string(s.position_iterations) + " iterations";
+  return std::to_string(s.velocity_iterations) + " iterations";
+}
+
+Setting peer_setting(const std::string& engine, double hz, int vi, int pi) {
+  Setting s;
+  s.engine = engine;
+  s.hz = hz;
+  s.velocity_iterations = vi;
+  s.position_iterations = pi;
+  s.label = engine + " " + std::to_string(static_cast<int>(hz)) + " Hz, " + iterations_label(s);
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> installed_peers() {
+  std::vector<std::string> out;
+#ifdef PGE_HAVE_BOX2D
+  out.emplace_back("box2d");
+#endif
+#ifdef PGE_HAVE_CHIPMUNK
+  out.emplace_back("chipmunk");
+#endif
+  return out;
+}
+
+bool available(const std::string& engine) {
+  if (engine == "pge") return true;
+  const auto peers = installed_peers();
+  return std::find(peers.begin(), peers.end(), engine) != peers.end();
+}
+
+std::string peer_package(const std::string& engine) {
+  if (engine == "box2d") return "libbox2d-dev";
+  if (engine == "chipmunk") return "libchipmunk-dev";
+  return "";
+}
+
+std::vector<Setting> default_settings(const std::string& engine) {
+  std::vector<Setting> out;
+  if (engine == "pge") {
+    for (const char* solver : {"robust", "certified"}) {
+      Setting s;
+      s.engine = "pge";
+      s.solver = solver;
+      s.scalar = "double";
+      s.label = std::string("pge ") + solver + "/double";
+      out.push_back(s);
+    }
+  } else if (engine == "box2d") {
+    for (double hz : kRates)
+      for (const int* it : {kBox2dDefault, kBox2dHigh}) out.push_back(peer_setting(engine, hz, it[0], it[1]));
+  } else if (engine == "chipmunk") {
+    for (double hz : kRates)
+      for (int it : {kChipmunkDefault, kChipmunkHigh}) out.push_back(peer_setting(engine, hz, it, 0));
+  }
+  return out;
+}
+
+std::vector<Vec2d> reference_positions(const Scene& scene, double horizon) {
+  WorldOptions wo;
+  wo.until = resolve_horizon(scene, horizon);
+  wo.max_events = std::numeric_limits<std::uint64_t>::max();
+  wo.frames_per_second = 0;
+  wo.solver = SolverKind::Certified;
+  World<double> world(scene, wo);
+  world.run();
+  std::vector<Vec2d> out(scene.bodies.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = world.snapshot(static_cast<BodyIndex>(i)).position;
+  return out;
+}
+
+Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon) {
+  const double h = resolve_horizon(scene.scene, horizon);
+  if (!available(s.engine)) {
+    Outcome o;
+    o.setting = s;
+    o.scene = scene.path;
+    o.horizon = h;
+    o.error = s.engine + " is not installed (Debian: " + peer_package(s.engine) + ")";
+    return o;
+  }
+  return run_setting(scene, s, h, reference_positions(scene.scene, h));
+}
+
+Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference) {
+  const double h = resolve_horizon(scene.scene, horizon);
+  Outcome o;
+  try {
+    if (s.engine == "pge") {
+      o = run_pge(scene.scene, s, h, reference);
+    } else if (!available(s.engine)) {
+      o.error = s.engine.empty() ? "no engine named" : s.engine + " is not installed (Debian: " + peer_package(s.engine) + ")";
+    } else {
+      o = run_peer(scene.scene, s, h, reference);
+    }
+  } catch (const detail::PeerUnsupported& e) {
+    o = Outcome{};
+    o.error = s.engine + " cannot take this scene: " + e.what();
+  }
+  o.setting = s;
+  o.scene = scene.path;
+  o.horizon = h;
+  o.reference = "pge certified double";
+  return o;
+}
+
+double overlap_depth(const BodyDesc& a, Vec2d pa, const BodyDesc& b, Vec2d pb) {
+  const Placed sa = place(a, pa), sb = place(b, pb);
+  double depth = 0;
+  if (sa.circle && sb.circle) depth = sa.radius + sb.radius - length(sa.centre - sb.centre);
+  else if (sa.circle) depth = sa.radius - signed_distance(sa.centre, sb.v);
+  else if (sb.circle) depth = sb.radius - signed_distance(sb.centre, sa.v);
+  else depth = sat_depth(sa.v, sb.v);
+  return std::max(0.0, depth);
+}
+
+double body_size(const BodyDesc& b) {
+  switch (b.shape) {
+    case ShapeKind::Circle: return b.radius;
+    case ShapeKind::Segment: return kInf;
+    case ShapeKind::Polygon: {
+      Vec2d c;
+      for (const Vec2d& p : b.vertices) c += p;
+      c = c * (1.0 / static_cast<double>(b.vertices.size()));
+      return -signed_distance(c, b.vertices);
+    }
+  }
+  return kInf;
+}
+
+bool crosses_fixed(const BodyDesc& f, Vec2d p0, Vec2d p1) {
+  const Placed s = place(f, f.position);
+  if (s.circle) return segment_distance(s.centre, p0, p1) < s.radius;
+  const std::size_t edges = s.v.size() == 2 ? 1 : s.v.size();
+  for (std::size_t k = 0; k < edges; ++k)
+    if (segments_cross(p0, p1, s.v[k], s.v[(k + 1) % s.v.size()])) return true;
+  return false;
+}
+
+double scene_extent(const Scene& scene) {
+  Box box;
+  for (const BodyDesc& b : scene.bodies) add_shape(box, b, b.position);
+  return box.lo.x <= box.hi.x ? length(box.hi - box.lo) : 0.0;
+}
+
+double rms_error(const Scene& scene, const std::vector<Vec2d>& p, const std::vector<Vec2d>& q, double extent) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < scene.bodies.size() && i < p.size() && i < q.size(); ++i) {
+    if (scene.bodies[i].fixed) continue;
+    const Vec2d d = p[i] - q[i];
+    sum += dot(d, d);
+    ++n;
+  }
+  if (n == 0) return 0;
+  const double rms = std::sqrt(sum / static_cast<double>(n));
+  return extent > 0 ? rms / extent : rms;
+}
+
+}  // namespace pge::peers

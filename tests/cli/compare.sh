@@ -1,0 +1,39 @@
+#!/bin/sh
+# pge compare (issue 11): a row per setting (PGE's 2, and 6 per installed peer), the JSON file,
+# exit 0; a bad scene exits 3; an unwritable --json exits 6.
+# Usage: compare.sh COMPARE_COMMAND... -- SCENE_DIR   (e.g. `pge compare` or `pge_compare_dev`)
+set -u
+cmd=""
+while [ $# -gt 0 ] && [ "$1" != "--" ]; do cmd="$cmd $1"; shift; done
+shift
+scenes=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "compare.sh: $*" >&2; exit 1; }
+
+$cmd "$scenes/peers-head-on.json" --json "$tmp/rows.json" >"$tmp/out.md" 2>"$tmp/err.txt" ||
+  fail "exit $? on head-on; stderr: $(cat "$tmp/err.txt")"
+grep -q '^| engine | setting | wall time (s) | energy drift | momentum drift | penetration | tunnelled | final-state error |$' "$tmp/out.md" ||
+  fail "no table header"
+[ "$(grep -c '^| pge | pge ' "$tmp/out.md")" -eq 2 ] || fail "expected 2 pge rows"
+# PGE certified is exact on a head-on collision: energy drift 0 and final-state error 0.
+grep -q '^| pge | pge certified/double | [0-9.]* | 0 | 0 | 0 | 0 | 0 |$' "$tmp/out.md" || fail "pge certified row not exact"
+for peer in box2d chipmunk; do
+  rows=$(grep -c "^| $peer | $peer " "$tmp/out.md")
+  if grep -q "$peer is not installed" "$tmp/err.txt"; then
+    [ "$rows" -eq 0 ] || fail "$peer skipped but has rows"
+  else
+    [ "$rows" -eq 6 ] || fail "expected 6 $peer rows, got $rows"
+  fi
+done
+[ -s "$tmp/rows.json" ] || fail "--json wrote nothing"
+grep -q '"engine": "pge"' "$tmp/rows.json" || fail "--json has no pge row"
+
+echo '{"format": "pge-scene/1", "bodies": [' > "$tmp/bad.json"
+$cmd "$tmp/bad.json" >/dev/null 2>&1
+[ $? -eq 3 ] || fail "a malformed scene should exit 3"
+$cmd "$scenes/peers-head-on.json" --peers box2d --json "$tmp/no-such-dir/rows.json" >/dev/null 2>&1
+[ $? -eq 6 ] || fail "an unwritable --json should exit 6"
+$cmd "$scenes/peers-head-on.json" --peers bullet >/dev/null 2>&1
+[ $? -eq 2 ] || fail "an unknown peer should exit 2"
+echo "compare.sh: ok"

@@ -1,0 +1,306 @@
+// The report's data, merge, summary and the gate (reports/), on hand-made results: each expected
+// value follows from the definitions in gate.hpp and report_data.hpp, stated beside it.
+#include "pge/gate.hpp"
+#include "pge/report_data.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace pge::report {
+namespace {
+
+Row accuracy_row(const std::string& scene, const std::string& solver, const std::string& scalar) {
+  Row r;
+  r.kind = RowKind::Accuracy;
+  r.family = "basics";
+  r.scene = scene;
+  r.solver = solver;
+  r.scalar = scalar;
+  r.bodies = 3;
+  r.events = 100;
+  r.predictions = 1000;
+  r.stop = "until";
+  r.judged_events = 100;
+  r.ulps_median = 0;
+  r.ulps_p99 = 1;
+  r.ulps_max = 2;
+  r.rel_p99 = 1e-16;
+  r.rel_max = 2e-16;
+  r.rel_hist.assign(kRelBuckets, 0);
+  r.rel_hist[0] = 60;
+  r.rel_hist[static_cast<std::size_t>(rel_bucket(1e-16))] = 40;
+  r.energy_drift = -1e-15;
+  r.momentum_drift = 1e-16;
+  r.repeats = 3;
+  r.wall_seconds = 0.01;
+  r.wall_min_seconds = 0.009;
+  r.events_per_second = 10000;
+  r.ns_per_prediction = 10000;
+  return r;
+}
+
+Results sample() {
+  Results r;
+  r.meta.created = "2026-11-22T00:00:00Z";
+  r.meta.commit = "abc";
+  r.meta.compiler = "g++ 12";
+  r.meta.build_type = "RelWithDebInfo";
+  r.meta.cpu = "cpu, with a comma";
+  r.meta.os = "Linux";
+  r.meta.cores = 2;
+  r.meta.quick = true;
+  r.meta.calibration_seconds = 0.05;
+  r.meta.items = 3;
+  r.rows.push_back(accuracy_row("head-on", "robust", "double"));
+  r.rows.push_back(accuracy_row("head-on", "fast", "double"));
+  Row drift;
+  drift.kind = RowKind::Drift;
+  drift.family = "gas";
+  drift.scene = "gas-200-drift";
+  drift.solver = "robust";
+  drift.scalar = "double";
+  drift.stop = "max_events";
+  drift.series = {{0, 0}, {100, 1e-15}, {200, -3e-15}};
+  r.rows.push_back(drift);
+  return r;
+}
+
+bool has_failure(const GateResult& g, const std::string& name_part) {
+  for (const GateCheck& c : g.checks)
+    if (c.status == Status::Fail && c.name.find(name_part) != std::string::npos) return true;
+  return false;
+}
+
+TEST(ReportData, RelativeErrorBucketsHoldTheirValues) {
+  EXPECT_EQ(rel_bucket(0.0), 0);
+  EXPECT_EQ(rel_bucket_upper(0), 0.0);
+  // Bucket k holds [2^(k-1+kRelMinExp), 2^(k+kRelMinExp)): 1.0 = 2^0 is in k = 1 - kRelMinExp.
+  EXPECT_EQ(rel_bucket(1.0), 1 - kRelMinExp);
+  for (double x : {1e-30, 3e-17, 1.1e-16, 0.25, 0.3, 7.0}) {
+    const int b = rel_bucket(x);
+    EXPECT_LE(x, rel_bucket_upper(b)) << x;
+    EXPECT_GE(x, rel_bucket_upper(b - 1)) << x;  // the bucket below ends where this one starts
+  }
+  EXPECT_EQ(rel_bucket(1e-300), 1);                // clamped into the first bucket
+  EXPECT_EQ(rel_bucket(1e300), kRelBuckets - 1);   // and the last
+}
+
+TEST(ReportData, QuantileOfAHistogramIsAnUpperBound) {
+  std::vector<std::uint64_t> h(kRelBuckets, 0);
+  h[0] = 90;                                      // 90 exact events
+  h[static_cast<std::size_t>(rel_bucket(1e-16))] = 10;  // 10 near 1e-16
+  EXPECT_EQ(hist_quantile(h, 0.5), 0.0);
+  EXPECT_EQ(hist_quantile(h, 0.9), 0.0);          // the 90th of 100 is still exact
+  const double p99 = hist_quantile(h, 0.99);
+  EXPECT_GE(p99, 1e-16);
+  EXPECT_LT(p99, 2.0 * 1e-16 * 2);  // within the bucket's factor of two
+  EXPECT_EQ(hist_quantile(std::vector<std::uint64_t>(kRelBuckets, 0), 0.99), 0.0);
+}
+
+TEST(ReportData, JsonRoundTripKeepsEveryField) {
+  Results a = sample();
+  a.rows[1].rel_max = HUGE_VAL;  // an exact time of 0 against a later engine time
+  a.rows[1].elastic = false;
+  const Results b = from_json_text(to_json_text(a), "test");
+  ASSERT_EQ(b.rows.size(), a.rows.size());
+  EXPECT_EQ(b.meta.commit, "abc");
+  EXPECT_EQ(b.meta.cpu, a.meta.cpu);
+  EXPECT_TRUE(b.meta.quick);
+  EXPECT_EQ(b.meta.calibration_seconds, 0.05);
+  for (std::size_t i = 0; i < a.rows.size(); ++i) {
+    EXPECT_EQ(b.rows[i].key(), a.rows[i].key());
+    EXPECT_EQ(b.rows[i].ulps_max, a.rows[i].ulps_max);
+    EXPECT_EQ(b.rows[i].energy_drift, a.rows[i].energy_drift);  // shortest round trip: exact
+    EXPECT_EQ(b.rows[i].wall_seconds, a.rows[i].wall_seconds);
+    EXPECT_EQ(b.rows[i].series, a.rows[i].series);
+    EXPECT_EQ(b.rows[i].rel_hist, a.rows[i].rel_hist);
+    EXPECT_EQ(b.rows[i].rel_max, a.rows[i].rel_max);
+    EXPECT_EQ(b.rows[i].elastic, a.rows[i].elastic);
+  }
+}
+
+TEST(ReportData, CorruptResultsAreRefusedWithTheirOrigin) {
+  const std::string good = to_json_text(sample());
+  EXPECT_THROW(from_json_text(good.substr(0, good.size() / 2), "half.json"), ReportError);
+  EXPECT_THROW(from_json_text("[]", "array.json"), ReportError);
+  std::string other = good;
+  other.replace(other.find("pge-report/1"), 12, "pge-report/9");
+  EXPECT_THROW(from_json_text(other, "v9.json"), ReportError);
+  Results twice = sample();
+  twice.rows.push_back(twice.rows.front());
+  try {
+    from_json_text(to_json_text(twice), "twice.json");
+    FAIL() << "a duplicated row was accepted";
+  } catch (const ReportError& e) {
+    EXPECT_NE(std::string(e.what()).find("twice.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("appears twice"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(read_results("/nonexistent/results.json"), ReportError);
+}
+
+TEST(ReportData, CsvHasAHeaderAndOneLinePerRowWithQuotedFields) {
+  Results r = sample();
+  r.rows[0].error = "a \"quoted\", failure";
+  std::ostringstream out;
+  write_csv(out, r);
+  std::istringstream in(out.str());
+  std::string line;
+  int lines = 0;
+  while (std::getline(in, line)) ++lines;
+  EXPECT_EQ(lines, 1 + static_cast<int>(r.rows.size()));
+  EXPECT_NE(out.str().find("\"a \"\"quoted\"\", failure\""), std::string::npos);
+}
+
+TEST(ReportData, ShardsMergeOnlyWhenTheyAreOneSweep) {
+  Results a = sample(), b = sample();
+  a.meta.shards = b.meta.shards = 2;
+  a.meta.shard = 0;
+  b.meta.shard = 1;
+  a.rows.resize(1);
+  b.rows.erase(b.rows.begin());
+  const Results m = merge({a, b}, false);
+  EXPECT_EQ(m.rows.size(), 3u);
+  EXPECT_EQ(m.meta.shards_merged, (std::vector<unsigned>{0, 1}));
+  EXPECT_THROW(merge({a}, false), ReportError);  // shard 1/2 missing
+  EXPECT_EQ(merge({a}, true).rows.size(), 1u);
+  EXPECT_THROW(merge({a, a}, false), ReportError);  // shard 0 twice
+  Results c = b;
+  c.meta.commit = "def";
+  EXPECT_THROW(merge({a, c}, false), ReportError);
+  Results d = b;
+  d.rows.push_back(a.rows.front());
+  EXPECT_THROW(merge({a, d}, false), ReportError);  // a row twice
+}
+
+TEST(ReportData, ParetoFrontHoldsTheUndominated) {
+  Results r;
+  // quick but inaccurate, slow and accurate, slow and inaccurate: the last is dominated by both.
+  Row fast = accuracy_row("s", "fast", "double");
+  fast.wall_seconds = 0.001;
+  fast.rel_hist.assign(kRelBuckets, 0);
+  fast.rel_hist[static_cast<std::size_t>(rel_bucket(1e-10))] = 100;
+  Row good = accuracy_row("s", "certified", "double");
+  good.wall_seconds = 0.01;
+  good.rel_hist.assign(kRelBuckets, 0);
+  good.rel_hist[0] = 100;
+  Row bad = accuracy_row("s", "robust", "float");
+  bad.wall_seconds = 0.02;
+  bad.rel_hist.assign(kRelBuckets, 0);
+  bad.rel_hist[static_cast<std::size_t>(rel_bucket(1e-5))] = 100;
+  r.rows = {fast, good, bad};
+  const auto s = summarize(r);
+  ASSERT_EQ(s.size(), 3u);
+  // In the report's order: fast/double, robust/float, certified/double.
+  EXPECT_EQ(s[0].solver, "fast");
+  EXPECT_TRUE(s[0].pareto);
+  EXPECT_EQ(s[1].solver, "robust");
+  EXPECT_FALSE(s[1].pareto);
+  EXPECT_EQ(s[2].solver, "certified");
+  EXPECT_TRUE(s[2].pareto);
+}
+
+TEST(Gate, UnchangedResultsPass) {
+  const Results r = sample();
+  const GateResult g = gate(r, r, GatePolicy{});
+  EXPECT_TRUE(g.pass());
+  EXPECT_EQ(g.failures(), 0u);
+  EXPECT_GT(g.checks.size(), 10u);
+}
+
+TEST(Gate, AMissFailsEvenOneAndNamesIt) {
+  const Results base = sample();
+  Results now = base;
+  now.rows[0].misses = 1;
+  const GateResult g = gate(base, now, GatePolicy{});
+  EXPECT_FALSE(g.pass());
+  EXPECT_TRUE(has_failure(g, "head-on: misses"));
+  EXPECT_EQ(g.failures(), 1u);
+}
+
+TEST(Gate, ErrorsMayGrowToTheFactorOrTheFloor) {
+  const Results base = sample();  // ulps_max 2: allowed max(2 x 2, 2 + 4) = 6
+  Results now = base;
+  now.rows[0].ulps_max = 6;
+  EXPECT_TRUE(gate(base, now, GatePolicy{}).pass());
+  now.rows[0].ulps_max = 7;
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "largest time error"));
+  // Energy drift: baseline 1e-15, allowed max(2e-15, 1e-15 + 64 eps) = 1e-15 + 1.42e-14.
+  now = base;
+  now.rows[0].energy_drift = -1.4e-14;
+  EXPECT_TRUE(gate(base, now, GatePolicy{}).pass());
+  now.rows[0].energy_drift = 1e-13;
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "energy drift"));
+  now.rows[0].energy_drift = std::nan("");
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "energy drift"));
+  // Infinite (E_start = 0): infinite against infinite is unchanged, against finite a regression.
+  Results inf_base = base;
+  inf_base.rows[0].energy_drift = HUGE_VAL;
+  now = inf_base;
+  EXPECT_TRUE(gate(inf_base, now, GatePolicy{}).pass());
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "energy drift"));
+}
+
+TEST(Gate, SpeedIsRelativeToTheReferenceConfiguration) {
+  const Results base = sample();  // head-on in robust/double (the reference) and fast/double
+  Results now = base;
+  now.rows[1].wall_seconds *= 2;  // fast/double alone 2x slower: 2x against 1.5x allowed
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "fast/double: speed"));
+  now = base;
+  for (Row& r : now.rows) r.wall_seconds *= 2;  // everything 2x: a busier machine, or a slower
+  // engine; relative to the reference nothing moved, and the reference's calibrated 2x is within 3x
+  EXPECT_TRUE(gate(base, now, GatePolicy{}).pass());
+  for (Row& r : now.rows) r.wall_seconds *= 2;  // 4x: past the calibrated 3x
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "robust/double: speed (calibrated)"));
+  now.meta.calibration_seconds *= 4;  // the machine is 4x slower: the engine is not
+  EXPECT_TRUE(gate(base, now, GatePolicy{}).pass());
+  now = base;
+  now.meta.validate = true;  // another build: speed cannot be compared, and the gate says so
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "same build"));
+  // Without the reference configuration every configuration is compared by the calibration.
+  Results alone = base;
+  alone.rows.erase(alone.rows.begin());
+  Results slow = alone;
+  slow.rows[0].wall_seconds *= 4;
+  EXPECT_TRUE(has_failure(gate(alone, slow, GatePolicy{}), "fast/double: speed (calibrated)"));
+}
+
+TEST(Gate, FailsClosedOnMissingRowsFailedRunsAndOtherSweeps) {
+  const Results base = sample();
+  Results now = base;
+  now.rows.erase(now.rows.begin());
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "present"));
+  now = base;
+  now.rows[0].error = "unsupported";
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "ran"));
+  now = base;
+  now.meta.quick = false;
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "same sweep"));
+  now = base;
+  now.rows[0].stop = "event-storm";
+  EXPECT_TRUE(has_failure(gate(base, now, GatePolicy{}), "stop"));
+  Results injected = base;
+  injected.meta.injected = "slow";
+  EXPECT_TRUE(has_failure(gate(injected, base, GatePolicy{}), "injected"));
+  EXPECT_FALSE(unreadable("results: garbage").pass());
+}
+
+TEST(Gate, JunitNamesEveryCheckAndEscapesMessages) {
+  const Results base = sample();
+  GateResult g = gate(base, base, GatePolicy{});
+  g.checks.push_back({"accuracy.robust/double", "x<y>: misses & more", Status::Fail, "2 \"misses\" <&>"});
+  std::ostringstream out;
+  write_junit(out, g, "pge-gate");
+  const std::string xml = out.str();
+  EXPECT_NE(xml.find("tests=\"" + std::to_string(g.checks.size()) + "\""), std::string::npos);
+  EXPECT_NE(xml.find("failures=\"1\""), std::string::npos);
+  EXPECT_NE(xml.find("x&lt;y&gt;: misses &amp; more"), std::string::npos);
+  EXPECT_NE(xml.find("2 &quot;misses&quot; &lt;&amp;&gt;"), std::string::npos);
+  EXPECT_EQ(xml.find("<y>"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pge::report
