@@ -56,7 +56,9 @@ int compare_command(const CompareOptions& opt) {
   }
   const double horizon = opt.until > 0 ? opt.until : scene.scene.run.until;
 
-  std::vector<peers::Setting> settings = peers::default_settings("pge");
+  std::vector<peers::Setting> settings;
+  for (const std::string& solver : opt.solvers)
+    for (const std::string& scalar : opt.scalars) settings.push_back(peers::pge_setting(solver, scalar));
   for (const std::string& p : opt.peers) {
     if (!peers::available(p)) {
       fmt::print(stderr, "pge compare: {} is not installed (Debian: {}); skipped\n", p, peers::peer_package(p));

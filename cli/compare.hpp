@@ -10,6 +10,8 @@ namespace pge::cli {
 struct CompareOptions {
   std::string scene;                                    // a scene file
   std::vector<std::string> peers{"box2d", "chipmunk"};  // peers to run beside PGE
+  std::vector<std::string> solvers{"robust", "certified"};  // PGE's rows: every solver x scalar given
+  std::vector<std::string> scalars{"double"};
   double until = 0;                                     // simulated seconds; <= 0: the scene's run.until
   std::string json;                                     // also write the rows here (JSON array); "" for none
   bool quiet = false;                                   // no table on stdout

@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--frames", run.frames, "Frame events per simulated second, sampled into the trace (default: the scene's; 0: none)")
       ->check(kNonNegative);
   run_cmd->add_option("--trace", run.trace, "Write the event trace of the (single) scene to FILE as JSON Lines");
-  run_cmd->add_option("--trace-dir", run.trace_dir, "Write each scene's trace to DIR/<scene>.jsonl");
+  run_cmd->add_option("--trace-dir", run.trace_dir, "Write each scene's trace to DIR/<scene>.jsonl (scenes whose file names are the same: DIR/<folder>-<scene>.jsonl)");
   run_cmd->add_option("--json", run.json_summary, "Also write the summaries as a JSON array to FILE");
   run_cmd->add_option("--scalar", scalar, "Number type: float, double, long-double, quad")
       ->check(CLI::IsMember({"float", "double", "long-double", "quad"}));
@@ -174,8 +174,8 @@ int main(int argc, char** argv) {
   report_cmd->footer(std::string(
       "Parts: accuracy (each scene judged by the oracle, then timed alone), scaling (the elastic gas at\n"
       "  several sizes, timed), drift (energy along one long gas run), peers (the pge compare scenes,\n"
-      "  fixtures/scenes/peers, by PGE in double and by Box2D and Chipmunk at every setting; full report\n"
-      "  only, unless --parts names it). Quick: 500 events per scene, 12\n"
+      "  fixtures/scenes/peers, by PGE in every solver x scalar asked for and by Box2D and Chipmunk at\n"
+      "  every setting; full report only, unless --parts names it). Quick: 500 events per scene, 12\n"
       "  random scenes, gas at 100 and 1,000, a 20,000-event drift run (about 2 minutes). Full: 2,000\n"
       "  events, 100 random scenes, gas up to 10,000, 200,000 events of drift.\n"
       "Sharding: --shard i/n runs every n-th item from i and writes results.json only; join the shards\n"
@@ -270,11 +270,19 @@ int main(int argc, char** argv) {
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand(
       "compare",
-      "One scene run by PGE (robust and certified, double) and by Box2D and Chipmunk at several step rates and "
-      "iteration counts: wall time, energy and momentum drift, penetration, tunnelling, final-state error against "
-      "PGE certified (a Markdown table).");
+      "One scene run by PGE (by default robust and certified, double) and by Box2D and Chipmunk at several step "
+      "rates and iteration counts: wall time, energy and momentum drift, penetration, tunnelling, final-state error "
+      "against PGE certified double (a Markdown table).");
   compare_cmd->add_option("scene", compare.scene, "A scene file (pge-scene/1 JSON)")->required();
   compare_cmd->add_option("--peers", compare.peers, "Peers beside PGE: box2d, chipmunk")->delimiter(',')->capture_default_str();
+  compare_cmd->add_option("--solvers", compare.solvers, "PGE's solvers: fast, robust, certified")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"fast", "robust", "certified"}))
+      ->capture_default_str();
+  compare_cmd->add_option("--scalars", compare.scalars, "PGE's scalars (a row for each solver x scalar): float, double, long-double, quad")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"float", "double", "long-double", "quad"}))
+      ->capture_default_str();
   compare_cmd->add_option("--until", compare.until, "Simulated seconds (default: the scene's run.until)")->check(kPositive);
   compare_cmd->add_option("--json", compare.json, "Also write the rows as JSON to this file");
   compare_cmd->add_flag("--quiet,-q", compare.quiet, "No table on stdout");

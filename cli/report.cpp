@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sys/utsname.h>
 #include <thread>
 #include <unistd.h>
@@ -142,6 +143,9 @@ struct Config {
 struct SceneItem {
   std::string family, name;
   LoadedScene loaded;
+  // Peer scenes: the reference final state (PGE certified, double), computed once on first use
+  // and shared by the scene's settings.
+  mutable std::optional<std::vector<Vec2d>> reference;
 };
 
 struct Item {
@@ -336,14 +340,10 @@ Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
         row.scene = it.scene->name;
         row.bodies = it.scene->loaded.scene.bodies.size();
         row.elastic = elastic(it.scene->loaded.scene);
-        // The reference (PGE certified, double) once per scene, shared by its settings.
-        static std::map<std::string, std::vector<Vec2d>> references;
-        auto ref = references.find(it.scene->loaded.path);
-        if (ref == references.end())
-          ref = references.emplace(it.scene->loaded.path, peers::reference_positions(it.scene->loaded.scene, -1)).first;
+        if (!it.scene->reference) it.scene->reference = peers::reference_positions(it.scene->loaded.scene, -1);
         peers::Setting setting = it.setting;
         if (setting.engine == "pge" && s.fast_solver) setting.solver = "fast";
-        const peers::Outcome out = peers::run_setting(it.scene->loaded, setting, -1, ref->second);
+        const peers::Outcome out = peers::run_setting(it.scene->loaded, setting, -1, *it.scene->reference);
         row.error = out.error;
         row.repeats = 1;
         row.wall_seconds = row.wall_min_seconds = out.wall_seconds;
@@ -436,30 +436,16 @@ std::vector<Item> plan(const ReportOptions& o, const std::vector<SceneItem>& sce
         if (c.scalar == "double") items.push_back({RowKind::Scaling, nullptr, n, c, {}});
   if (selected(o.parts, "drift"))
     for (const Config& c : configs) items.push_back({RowKind::Drift, nullptr, s.drift_bodies, c, {}});
-  // Peers (the full report, or --parts peers): each pge compare scene by PGE in double (the
-  // solvers asked for) and by every setting of each installed peer.
-  for (const SceneItem& scene : peer_scenes)  // empty unless the part is asked for
-    for (const std::string& engine : {std::string("pge"), std::string("box2d"), std::string("chipmunk")}) {
-      std::vector<peers::Setting> settings = peers::default_settings(engine);
-      if (engine == "pge") {
-        settings.clear();
-        for (const std::string& solver : kSolverNames)
-          if (selected(o.solvers, solver)) {
-            peers::Setting p;
-            p.engine = "pge";
-            p.solver = solver;
-            p.scalar = "double";
-            p.label = "pge " + solver + "/double";
-            settings.push_back(p);
-          }
-      } else if (!peers::available(engine)) {
-        continue;  // said once, where the plan is made
-      }
-      for (const peers::Setting& p : settings) {
-        const std::string setting = p.engine == "pge" ? p.solver + "/double" : p.label.substr(p.engine.size() + 1);
-        items.push_back({RowKind::Peer, &scene, 0, {p.engine, setting}, p});
-      }
-    }
+  // Peers (the full report, or --parts peers): each pge compare scene by PGE in every
+  // configuration asked for and by every setting of each installed peer.
+  for (const SceneItem& scene : peer_scenes) {  // empty unless the part is asked for
+    for (const Config& c : configs)  // peer rows: solver = the engine, scalar = its setting
+      items.push_back({RowKind::Peer, &scene, 0, {"pge", c.solver + "/" + c.scalar}, peers::pge_setting(c.solver, c.scalar)});
+    for (const std::string& engine : {std::string("box2d"), std::string("chipmunk")})
+      if (peers::available(engine))  // a missing peer is said once, where the plan is made
+        for (const peers::Setting& p : peers::default_settings(engine))
+          items.push_back({RowKind::Peer, &scene, 0, {p.engine, p.label.substr(p.engine.size() + 1)}, p});
+  }
   return items;
 }
 
@@ -562,26 +548,25 @@ int make_report(const ReportOptions& o, Results& results) {
     fmt::print(stderr, "pge report: {}\n", e.what());
     return kExitBadScene;
   }
-  // The pge compare scenes (fixtures/scenes/peers), for the peers part.
+  // The pge compare scenes (fixtures/scenes/peers), for the peers part: in the full report, and in
+  // a quick one only when --parts names it.
   std::vector<SceneItem> peer_scenes;
-  if (!o.quick || (!o.parts.empty() && selected(o.parts, "peers"))) {
-    if (selected(o.parts, "peers")) {
-      ReportOptions po;
-      po.scenes = o.peer_scenes;
-      if (po.scenes.empty())
-        po.scenes = {(fs::is_directory("fixtures/scenes/peers") ? fs::path("fixtures/scenes/peers")
-                                                                : fs::path(PGE_SOURCE_DIR) / "fixtures/scenes/peers")
-                         .string()};
-      try {
-        peer_scenes = load_scenes(po, 0);
-      } catch (const std::exception& e) {
-        fmt::print(stderr, "pge report: no peer scenes ({}); the peers part is left out\n", e.what());
-      }
-      for (const std::string engine : {"box2d", "chipmunk"})
-        if (!peers::available(engine) && !o.quiet)
-          fmt::print(stderr, "pge report: {} is not installed (Debian: {}); it is left out of the peers part\n", engine,
-                     peers::peer_package(engine));
+  if (o.parts.empty() ? !o.quick : selected(o.parts, "peers")) {
+    ReportOptions po;
+    po.scenes = o.peer_scenes;
+    if (po.scenes.empty())
+      po.scenes = {(fs::is_directory("fixtures/scenes/peers") ? fs::path("fixtures/scenes/peers")
+                                                              : fs::path(PGE_SOURCE_DIR) / "fixtures/scenes/peers")
+                       .string()};
+    try {
+      peer_scenes = load_scenes(po, 0);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "pge report: no peer scenes ({}); the peers part is left out\n", e.what());
     }
+    for (const std::string engine : {"box2d", "chipmunk"})
+      if (!peers::available(engine) && !o.quiet)
+        fmt::print(stderr, "pge report: {} is not installed (Debian: {}); it is left out of the peers part\n", engine,
+                   peers::peer_package(engine));
   }
   const std::vector<Item> items = plan(o, scenes, peer_scenes, s);
   results.meta = machine_meta(o);

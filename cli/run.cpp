@@ -15,6 +15,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <stdexcept>
 
 namespace pge::cli {
@@ -176,6 +178,25 @@ SceneResult simulate_any(const LoadedScene& loaded, const RunOptions& opt, Trace
   throw std::logic_error("unknown scalar kind");
 }
 
+// The trace file names for --trace-dir: each scene's file stem, and for stems that two scenes
+// share, the folder's name before it ("games-pool.jsonl"), then a count after it if that is
+// shared too ("games-pool-2.jsonl"): no trace overwrites another.
+std::vector<std::string> trace_names(const std::vector<std::string>& files) {
+  std::map<std::string, int> stems;
+  for (const std::string& f : files) ++stems[fs::path(f).stem().string()];
+  std::vector<std::string> names;
+  std::set<std::string> taken;
+  for (const std::string& f : files) {
+    const fs::path path(f);
+    std::string name = path.stem().string();
+    if (stems[name] > 1) name = fs::absolute(path).parent_path().filename().string() + "-" + name;
+    std::string unique = name;
+    for (int k = 2; !taken.insert(unique).second; ++k) unique = fmt::format("{}-{}", name, k);
+    names.push_back(unique + ".jsonl");
+  }
+  return names;
+}
+
 }  // namespace
 
 std::vector<std::string> expand_scene_paths(const std::vector<std::string>& paths) {
@@ -219,6 +240,7 @@ int run_command(const RunOptions& opt) {
     }
   }
 
+  const std::vector<std::string> trace_file = trace_names(files);
   int exit_code = kExitOk;
   auto fail = [&](int code) {
     if (exit_code == kExitOk) exit_code = code;
@@ -236,7 +258,7 @@ int run_command(const RunOptions& opt) {
       continue;
     }
     std::string trace_path = opt.trace;
-    if (!opt.trace_dir.empty()) trace_path = (fs::path(opt.trace_dir) / fs::path(file).stem()).string() + ".jsonl";
+    if (!opt.trace_dir.empty()) trace_path = (fs::path(opt.trace_dir) / trace_file[k]).string();
     std::unique_ptr<TraceWriter> trace;
     if (!trace_path.empty()) {
       trace = std::make_unique<TraceWriter>();

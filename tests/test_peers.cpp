@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -93,7 +95,12 @@ TEST(PeersReference, HeadOnIsExact) {
   ASSERT_EQ(ref.size(), 2u);
   EXPECT_EQ(ref[0].x, 3.0);
   EXPECT_EQ(ref[1].x, 7.0);
-  for (const peers::Setting& st : peers::default_settings("pge")) {
+  // Every scalar: the inputs are small dyadic numbers, so the touch at t = 4 and the positions at
+  // t = 5 are exact in float as in quad (the drifts are computed in the run's own scalar).
+  std::vector<peers::Setting> settings = peers::default_settings("pge");
+  for (const char* solver : {"robust", "certified"})
+    for (const char* scalar : {"float", "long-double", "quad"}) settings.push_back(peers::pge_setting(solver, scalar));
+  for (const peers::Setting& st : settings) {
     const peers::Outcome o = peers::run_setting(s, st, 0);
     EXPECT_TRUE(o.error.empty()) << o.error;
     EXPECT_EQ(o.horizon, 5.0);
@@ -109,6 +116,12 @@ TEST(PeersSettings, SeveralRatesAndIterationCounts) {
   EXPECT_EQ(peers::default_settings("box2d").size(), 6u);
   EXPECT_EQ(peers::default_settings("chipmunk").size(), 6u);
   EXPECT_TRUE(peers::default_settings("bullet").empty());
+  const peers::Setting q = peers::pge_setting("certified", "quad");
+  EXPECT_EQ(q.label, "pge certified/quad");
+  EXPECT_EQ(q.engine, "pge");
+  // An unknown scalar is refused (run_setting reports it, it does not fall back to double).
+  const pge::LoadedScene s = pge::parse_scene(kHeadOn, "head-on");
+  EXPECT_THROW(peers::run_setting(s, peers::pge_setting("robust", "half"), 0), std::invalid_argument);
 }
 
 // The peers swap the velocities too: they end within a few steps' travel of x = 3 and 7 (the

@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace pge::peers {
 namespace {
@@ -26,31 +27,47 @@ constexpr int kChipmunkDefault = 10, kChipmunkHigh = 50;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-struct Totals {
-  double energy = 0;
-  Vec2d momentum;
+// Totals are summed in a type wider than the state they measure (long double for float, double
+// and long double states, quad for quad), the same for PGE and the peers: a float world's energy
+// summed in float would hide drifts below float's resolution.
+template <class T> using Wide = std::conditional_t<std::is_same_v<T, Quad>, Quad, long double>;
+
+template <class U> struct Totals {
+  U energy = U(0);
+  Vec2<U> momentum;
 };
 
 // Kinetic + potential energy (potential -m a . p of each body's field, as World measures it) and
-// momentum of the moving bodies.
-Totals totals(const Scene& scene, const std::vector<Vec2d>& p, const std::vector<Vec2d>& v) {
-  Totals t;
+// momentum of the moving bodies, in U.
+template <class U, class P>
+Totals<U> totals(const Scene& scene, const std::vector<Vec2<P>>& p, const std::vector<Vec2<P>>& v) {
+  Totals<U> t;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDesc& b = scene.bodies[i];
     if (b.fixed) continue;
-    t.energy += 0.5 * b.mass * dot(v[i], v[i]) - b.mass * dot(field_acceleration(scene, b), p[i]);
-    t.momentum += v[i] * b.mass;
+    const U m(b.mass);
+    const Vec2<U> vi = vec_cast<U>(v[i]), pi = vec_cast<U>(p[i]), a = vec_cast<U>(field_acceleration(scene, b));
+    t.energy += m * dot(vi, vi) / U(2) - m * dot(a, pi);
+    t.momentum += vi * m;
   }
   return t;
 }
 
 double length(Vec2d v) { return std::hypot(v.x, v.y); }
 
-void set_drifts(Outcome& o, const Totals& start, const Totals& end) {
-  const double de = end.energy - start.energy;
-  o.energy_drift = start.energy != 0 ? de / std::abs(start.energy) : (de == 0 ? 0.0 : kInf);
-  const double dp = length(end.momentum - start.momentum), p0 = length(start.momentum);
-  o.momentum_drift = p0 != 0 ? dp / p0 : (dp == 0 ? 0.0 : kInf);
+// d / |base| as a double, computed in T (0 / 0 -> 0, d / 0 -> infinity).
+template <class T> double relative_change(const T& d, const T& base) {
+  if (base != T(0)) return to_double(d / (base < T(0) ? T(-base) : base));
+  return d == T(0) ? 0.0 : kInf;
+}
+
+// Energy drift (signed) and momentum drift, in the type the totals were summed in (a quad run's
+// drift of 1e-33 would vanish in double differences).
+template <class U> void set_drifts(Outcome& o, const Totals<U>& start, const Totals<U>& end) {
+  using std::sqrt;
+  const Vec2<U> dp = end.momentum - start.momentum;
+  o.energy_drift = relative_change(U(end.energy - start.energy), start.energy);
+  o.momentum_drift = relative_change(U(sqrt(dot(dp, dp))), U(sqrt(dot(start.momentum, start.momentum))));
 }
 
 // A shape placed in the world: a circle, or a convex polygon (a segment: 2 vertices).
@@ -157,36 +174,56 @@ Box fixed_bounds(const Scene& scene) {
 
 double resolve_horizon(const Scene& scene, double horizon) { return horizon > 0 ? horizon : scene.run.until; }
 
-Outcome run_pge(const Scene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference) {
+template <class T>
+Outcome run_pge_as(const Scene& scene, SolverKind solver, double horizon, const std::vector<Vec2d>& reference) {
   Outcome o;
   WorldOptions wo;
   wo.until = horizon;
   wo.max_events = std::numeric_limits<std::uint64_t>::max();  // to the horizon, as the peers run
   wo.frames_per_second = 0;
-  SolverKind kind{};
-  if (!parse_solver_kind(s.solver, kind)) throw std::invalid_argument("unknown PGE solver \"" + s.solver + "\"");
-  wo.solver = kind;
-  if (!s.scalar.empty() && s.scalar != "double")
-    throw std::invalid_argument("pge rows run in double only, not \"" + s.scalar + "\"");
-  World<double> world(scene, wo);
-  const double e0 = world.kinetic_energy() + world.potential_energy();
-  const Vec2d p0 = world.momentum();
+  wo.solver = solver;
+  World<T> world(scene, wo);
+  const std::size_t n = scene.bodies.size();
+  std::vector<Vec2<T>> p(n), v(n);
+  const auto state = [&] {
+    for (std::size_t i = 0; i < n; ++i) {
+      const BodySnapshot<T> b = world.snapshot(static_cast<BodyIndex>(i));
+      p[i] = b.position;
+      v[i] = b.velocity;
+    }
+    return totals<Wide<T>>(scene, p, v);
+  };
+  const Totals<Wide<T>> start = state();
   const auto t0 = Clock::now();
   while (world.step()) {
   }
   o.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   if (world.stop_reason() == StopReason::EventStorm) o.error = "event storm";
-  const double e1 = world.kinetic_energy() + world.potential_energy();
-  set_drifts(o, {e0, p0}, {e1, world.momentum()});
-  o.penetration = world.largest_contact_overlap().relative;
-  std::vector<Vec2d> end(scene.bodies.size());
+  set_drifts(o, start, state());
+  o.penetration = to_double(world.largest_contact_overlap().relative);
+  std::vector<Vec2d> end(n);
   const Box box = fixed_bounds(scene);
-  for (std::size_t i = 0; i < end.size(); ++i) {
-    end[i] = world.snapshot(static_cast<BodyIndex>(i)).position;
+  for (std::size_t i = 0; i < n; ++i) {
+    end[i] = {to_double(p[i].x), to_double(p[i].y)};
     if (!scene.bodies[i].fixed && escaped(scene, box, i, end[i])) ++o.tunnelled;
   }
   o.final_error = rms_error(scene, end, reference, scene_extent(scene));
   return o;
+}
+
+Outcome run_pge(const Scene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference) {
+  SolverKind solver{};
+  if (!parse_solver_kind(s.solver, solver)) throw std::invalid_argument("unknown PGE solver \"" + s.solver + "\"");
+  ScalarKind scalar = ScalarKind::Double;
+  if (!s.scalar.empty() && !parse_scalar_kind(s.scalar, scalar))
+    throw std::invalid_argument("unknown PGE scalar \"" + s.scalar + "\"");
+  switch (scalar) {
+    case ScalarKind::Float: return run_pge_as<float>(scene, solver, horizon, reference);
+    case ScalarKind::Double: return run_pge_as<double>(scene, solver, horizon, reference);
+    case ScalarKind::LongDouble: return run_pge_as<long double>(scene, solver, horizon, reference);
+    case ScalarKind::QuadPrecision: return run_pge_as<Quad>(scene, solver, horizon, reference);
+  }
+  throw std::logic_error("unhandled scalar");
 }
 
 Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference) {
@@ -203,7 +240,7 @@ Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std
   const std::size_t n = scene.bodies.size();
   std::vector<Vec2d> p(n), v(n);
   for (std::size_t i = 0; i < n; ++i) p[i] = scene.bodies[i].position, v[i] = scene.bodies[i].fixed ? Vec2d{} : scene.bodies[i].velocity;
-  const Totals start = totals(scene, p, v);
+  const Totals<long double> start = totals<long double>(scene, p, v);
   const auto steps = static_cast<std::uint64_t>(std::max(1.0, std::round(horizon * s.hz)));
   const double dt = horizon / static_cast<double>(steps);
   std::vector<std::size_t> moving, fixed;
@@ -234,7 +271,7 @@ Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std
   }
   o.wall_seconds = wall;
   for (std::size_t i : moving) v[i] = sim->velocity(i);
-  set_drifts(o, start, totals(scene, p, v));
+  set_drifts(o, start, totals<long double>(scene, p, v));
   const Box box = fixed_bounds(scene);
   for (std::size_t i : moving)
     if (crossed[i] || escaped(scene, box, i, p[i])) ++o.tunnelled;
@@ -282,17 +319,19 @@ std::string peer_package(const std::string& engine) {
   return "";
 }
 
+Setting pge_setting(const std::string& solver, const std::string& scalar) {
+  Setting s;
+  s.engine = "pge";
+  s.solver = solver;
+  s.scalar = scalar;
+  s.label = "pge " + solver + "/" + scalar;
+  return s;
+}
+
 std::vector<Setting> default_settings(const std::string& engine) {
   std::vector<Setting> out;
   if (engine == "pge") {
-    for (const char* solver : {"robust", "certified"}) {
-      Setting s;
-      s.engine = "pge";
-      s.solver = solver;
-      s.scalar = "double";
-      s.label = std::string("pge ") + solver + "/double";
-      out.push_back(s);
-    }
+    for (const char* solver : {"robust", "certified"}) out.push_back(pge_setting(solver, "double"));
   } else if (engine == "box2d") {
     for (double hz : kRates)
       for (const int* it : {kBox2dDefault, kBox2dHigh}) out.push_back(peer_setting(engine, hz, it[0], it[1]));

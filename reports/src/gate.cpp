@@ -101,9 +101,9 @@ GateResult gate(const Results& baseline, const Results& results, const GatePolic
   };
   std::map<std::string, double> reference_now, reference_base;  // by scene key
   for (const Row& x : results.rows)
-    if (timed(x) && x.config() == policy.reference) reference_now[fmt::format("{}/{}/{}", row_kind_name(x.kind), x.family, x.scene)] = x.wall_seconds;
+    if (timed(x) && x.config() == policy.reference) reference_now[x.scene_key()] = x.wall_seconds;
   for (const Row& x : baseline.rows)
-    if (timed(x) && x.config() == policy.reference) reference_base[fmt::format("{}/{}/{}", row_kind_name(x.kind), x.family, x.scene)] = x.wall_seconds;
+    if (timed(x) && x.config() == policy.reference) reference_base[x.scene_key()] = x.wall_seconds;
 
   for (const Row& b : baseline.rows) {
     const auto it = now.find(b.key());
@@ -142,7 +142,7 @@ GateResult gate(const Results& baseline, const Results& results, const GatePolic
               drift_floor, "relative");
     }
     if (timed(b) && timed(r)) {
-      const std::string scene_key = fmt::format("{}/{}/{}", row_kind_name(b.kind), b.family, b.scene);
+      const std::string scene_key = b.scene_key();
       const auto ref_now = reference_now.find(scene_key), ref_base = reference_base.find(scene_key);
       if (b.config() != policy.reference && ref_now != reference_now.end() && ref_base != reference_base.end()) {
         Speed& s = relative[b.config()];

@@ -38,7 +38,8 @@ RowKind parse_row_kind(const std::string& name) {
   throw ReportError("unknown row kind \"" + name + "\"");
 }
 
-std::string Row::key() const { return fmt::format("{}/{}/{}/{}/{}", row_kind_name(kind), family, scene, solver, scalar); }
+std::string Row::scene_key() const { return fmt::format("{}/{}/{}", row_kind_name(kind), family, scene); }
+std::string Row::key() const { return fmt::format("{}/{}/{}", scene_key(), solver, scalar); }
 
 namespace {
 
@@ -303,7 +304,6 @@ int config_order(const std::string& solver, const std::string& scalar) {
 std::vector<ConfigSummary> summarize(const Results& r) {
   using Key = std::pair<int, std::string>;  // the report's order, then the name
   std::map<Key, ConfigSummary> by;
-  std::map<Key, double> predictions_seconds;
   std::map<Key, std::uint64_t> predictions;
   for (const Row& x : r.rows) {
     if (x.kind != RowKind::Accuracy) continue;
@@ -328,14 +328,13 @@ std::vector<ConfigSummary> summarize(const Results& r) {
     if (x.elastic) c.worst_energy_drift = std::max(c.worst_energy_drift, std::abs(x.energy_drift));
     c.worst_momentum_drift = std::max(c.worst_momentum_drift, x.momentum_drift);
     c.wall_seconds += x.wall_seconds;
-    predictions_seconds[order] += x.wall_seconds;
     predictions[order] += x.predictions;
   }
   std::vector<ConfigSummary> out;
   for (auto& [order, c] : by) {
     c.rel_p99 = hist_quantile(c.rel_hist, 0.99);
     c.events_per_second = c.wall_seconds > 0 ? static_cast<double>(c.events) / c.wall_seconds : 0;
-    c.ns_per_prediction = predictions[order] ? 1e9 * predictions_seconds[order] / static_cast<double>(predictions[order]) : 0;
+    c.ns_per_prediction = predictions[order] ? 1e9 * c.wall_seconds / static_cast<double>(predictions[order]) : 0;
     out.push_back(c);
   }
   // Pareto: a configuration is dominated when another one is no slower, no less accurate (p99

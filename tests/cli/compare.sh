@@ -1,6 +1,7 @@
 #!/bin/sh
 # pge compare (issue 11): a row per setting (PGE's 2, and 6 per installed peer), the JSON file,
-# exit 0; a bad scene exits 3; an unwritable --json exits 6.
+# exit 0; --solvers x --scalars rows (exact on head-on in float and quad); a bad scene exits 3;
+# an unwritable --json exits 6.
 # Usage: compare.sh COMPARE_COMMAND... -- SCENE_DIR   (e.g. `pge compare` or `pge_compare_dev`)
 set -u
 cmd=""
@@ -26,6 +27,15 @@ for peer in box2d chipmunk; do
     [ "$rows" -eq 6 ] || fail "expected 6 $peer rows, got $rows"
   fi
 done
+# --solvers and --scalars: a PGE row for each pair, exact on head-on in every scalar.
+$cmd "$scenes/peers-head-on.json" --peers chipmunk --solvers robust,certified --scalars float,quad >"$tmp/scalars.md" 2>"$tmp/err2.txt" ||
+  fail "exit $? with --scalars; stderr: $(cat "$tmp/err2.txt")"
+[ "$(grep -c '^| pge | pge ' "$tmp/scalars.md")" -eq 4 ] || fail "expected 4 pge rows with --scalars float,quad"
+for config in robust/float robust/quad certified/float certified/quad; do
+  grep -q "^| pge | pge $config | [0-9.]* | 0 | 0 | 0 | 0 | 0 |\$" "$tmp/scalars.md" || fail "pge $config row not exact"
+done
+$cmd "$scenes/peers-head-on.json" --scalars half >/dev/null 2>&1
+[ $? -eq 2 ] || fail "an unknown scalar should exit 2"
 [ -s "$tmp/rows.json" ] || fail "--json wrote nothing"
 grep -q '"engine": "pge"' "$tmp/rows.json" || fail "--json has no pge row"
 

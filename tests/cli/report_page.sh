@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The report's index.html opens offline and cleanly (issue 8): made from two small scenes and two
-# configurations, every part (the peers part on the head-on compare scene), it references nothing outside itself, its plots are well-formed SVG from
-# gnuplot, and headless Chromium loads it with no console error, exception or failed load
-# (tests/tools/html_console_check.sh; exit 77, a skip, only where Chromium is not installed).
+# configurations, every part (the peers part on the head-on compare scene), it references nothing
+# outside itself, its plots are well-formed SVG from gnuplot, the peers part has PGE's rows in every
+# solver x scalar asked for, and headless Chromium loads it with no console error, exception or
+# failed load (tests/tools/html_console_check.sh; exit 77, a skip, only where Chromium is not
+# installed).
 # Usage: report_page.sh PGE FIXTURES_DIR CHECKER
 set -u
 pge=$1; fixtures=$2; checker=$3
@@ -12,6 +14,18 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$pge" report --quick --scenes "$fixtures/scenes/basics/head-on.json" "$fixtures/scenes/simultaneous/cradle-5.json" \
   --random 1 --solvers robust,certified --scalars double --parts accuracy,scaling,drift,peers \
   --peer-scenes "$fixtures/scenes/peers/peers-head-on.json" --out "$out/r" -q || fail "pge report exited with $?"
+# The peers part runs PGE in every solver x scalar asked for (here 2 x 2 on the head-on scene,
+# where each is exact: energy drift and final-state error 0).
+"$pge" report --parts peers --solvers robust,certified --scalars float,quad \
+  --peer-scenes "$fixtures/scenes/peers/peers-head-on.json" --out "$out/p" -q || fail "pge report --parts peers exited with $?"
+python3 - "$out/p/results.json" <<'PY' || fail "the peers part does not have PGE's rows in every solver x scalar"
+import json, sys
+rows = [r for r in json.load(open(sys.argv[1]))["rows"] if r["kind"] == "peer" and r["solver"] == "pge"]
+got = sorted(r["scalar"] for r in rows)
+want = ["certified/float", "certified/quad", "robust/float", "robust/quad"]
+assert got == want, got
+assert all(r["error"] == "" and r["energy_drift"] == 0 and r["final_error"] == 0 for r in rows), rows
+PY
 page=$out/r/index.html
 [[ -s $page ]] || fail "no index.html"
 if grep -Eq '(src|href)="(https?:|//|file:)' "$page"; then fail "index.html references an outside resource"; fi

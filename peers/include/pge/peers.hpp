@@ -31,7 +31,7 @@ struct Setting {               // one way of running a scene
   std::string label;           // e.g. "box2d 240 Hz, 8+3 iterations" or "pge robust/double"
   double hz = 0;               // steps per simulated second (peers)
   int velocity_iterations = 0, position_iterations = 0;  // Box2D; Chipmunk uses velocity_iterations as its iterations
-  std::string solver, scalar;  // pge rows: "robust" | "certified" | "fast"; "double" (the only scalar offered)
+  std::string solver, scalar;  // pge rows: "robust" | "certified" | "fast"; "float" | "double" | "long-double" | "quad"
 };
 
 struct Outcome {
@@ -58,6 +58,9 @@ std::string peer_package(const std::string& engine);
 // Box2D: 60, 240 and 1000 Hz x 8+3 (its default) and 50+20 iterations; Chipmunk: the same rates x
 // 10 (its default) and 50 iterations; pge: robust and certified, double. Empty for other names.
 std::vector<Setting> default_settings(const std::string& engine);
+// A PGE setting: solver "fast" | "robust" | "certified", scalar "float" | "double" |
+// "long-double" | "quad"; labelled "pge SOLVER/SCALAR".
+Setting pge_setting(const std::string& solver, const std::string& scalar);
 
 // Runs `s` on the scene to `horizon` (<= 0: the scene's run.until) and measures it against the
 // reference (computed here; pass one from reference_positions to share it between settings).

@@ -74,6 +74,8 @@ struct Row {
 
   // The key a row is matched by across reports (kind/family/scene/solver/scalar).
   std::string key() const;
+  // The scene part of it (kind/family/scene): the rows of one scene in one sweep.
+  std::string scene_key() const;
   std::string config() const { return solver + "/" + scalar; }
 };
 

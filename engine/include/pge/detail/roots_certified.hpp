@@ -4,7 +4,9 @@
 // Structure. For the second derivative (and, to build it, the third), the solver keeps a list of
 // points lo = x0 < x1 < ... < xn = hi with the certified sign of q = p^(k) at each (never zero)
 // and this invariant: between two neighbours with equal signs q has no root; between neighbours
-// with opposite signs it has exactly one distinct root, and the two are adjacent T values. Level
+// with opposite signs it has exactly one distinct root, and the two are adjacent T values. (One
+// exception to "certified": a root that is exactly a T value x is kept as the pair (x, next x),
+// with x labelled by the sign q has just before it; see narrow.) Level
 // k is built from level k+1: where q' keeps its sign q is monotone, so a sign change of q brackets
 // one root, narrowed to adjacent T values; where q' changes sign (an adjacent pair) q has one
 // extremum, and if q has the same sign at both ends a bound on |q'| over the pair proves that the
@@ -29,11 +31,16 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 
 namespace pge {
 namespace detail {
+
+// How many calls of the certified solver this thread has sent to the exact solver: a cost
+// measure (tests assert that common cases stay in floating point).
+inline thread_local std::uint64_t certified_exact_fallbacks = 0;
 
 template <class T> class Certifier {
  public:
@@ -147,7 +154,8 @@ template <class T> class Certifier {
   }
 
   // q = p^(k) has exactly one root in (a, b), sign s_a at a and -s_a at b: a bracket ra < rb of
-  // adjacent T values around it, with certified signs s_a at ra and -s_a at rb.
+  // adjacent T values around it, with certified signs s_a at ra and -s_a at rb (or ra the root
+  // itself, q(ra) = 0: see root_at).
   Verdict narrow(int k, const T& a, const T& b, int s_a, T& ra, T& rb) {
     const Poly<T>& q = d_[k];
     T guess;
@@ -160,16 +168,26 @@ template <class T> class Certifier {
     } else {
       guess = refine_root(q, d_[k + 2], a, b, s_a);
     }
+    // A root exactly at a T value x (q(x) = 0; q has no other root in (a, b)) is bracketed by
+    // (x, next x), x labelled s_a: q has the sign s_a on [a, x) and -s_a on (x, b], so every use
+    // of the bracket stays true: q is monotone on [a, x] and on [x, b], the pair holds its one
+    // root, and nearest(x, next x, s_a) returns x (the sign at their midpoint is -s_a). Common
+    // with derivatives: under gravity 1, p''' of a disc against a corner vanishes at t = v_y.
+    const auto root_at = [&](const T& x) {
+      ra = x;
+      rb = boost::math::float_next(x);
+      return rb <= b ? Verdict::Done : Verdict::Undecided;
+    };
     // Try the adjacent pair on the side of the guess that the certified sign points to.
     T lo = a, hi = b;
     if (guess > a && guess < b) {
       const int sg = sign(k, guess, true);
-      if (sg == 0) return Verdict::Undecided;
+      if (sg == 0) return root_at(guess);
       if (sg == s_a) lo = guess; else hi = guess;
       const T probe = sg == s_a ? boost::math::float_next(guess) : boost::math::float_prior(guess);
       if (probe > a && probe < b) {
         const int sp = sign(k, probe, true);
-        if (sp == 0) return Verdict::Undecided;
+        if (sp == 0) return root_at(probe);
         if (sp == s_a) lo = probe; else hi = probe;
       }
     }
@@ -182,7 +200,7 @@ template <class T> class Certifier {
         return Verdict::Done;
       }
       const int sm = sign(k, mid);
-      if (sm == 0) return Verdict::Undecided;
+      if (sm == 0) return root_at(mid);
       if (sm == s_a) lo = mid; else hi = mid;
     }
     return Verdict::Undecided;
@@ -284,6 +302,7 @@ bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& h
     return visit(t, overlap);
   };
   auto fall_back = [&] {
+    ++detail::certified_exact_fallbacks;
     detail::exact::ExactSolver<T> exact(p, lo, hi);
     return exact.visit(rule, visited, visit);
   };
