@@ -34,19 +34,12 @@ sys.exit(0 if shapes == bodies and marks >= 1 else 1)
 PY
 done
 
-set +e
-"$pge" render "$fixtures/basics/newtons-cradle.json" -o "$out/picture.png" 2>"$out/stderr"
-code=$?
-set -e
-[[ $code -eq 2 ]] || fail "a .png output exited $code, not 2: $(cat "$out/stderr")"
-grep -q "\.svg" "$out/stderr" || fail "the bad-extension message does not name the forms: $(cat "$out/stderr")"
-
-set +e
-"$pge" render "$out/no-such-scene.json" -o "$out/missing.svg" 2>"$out/stderr"
-code=$?
-set -e
-[[ $code -eq 3 ]] || fail "a missing scene exited $code, not 3: $(cat "$out/stderr")"
-grep -q "no-such-scene.json" "$out/stderr" || fail "the missing-scene message does not name the file: $(cat "$out/stderr")"
+# Each error: its exit code, one line on stderr naming what is wrong (expect_error.sh).
+expect_error=$(dirname "$0")/expect_error.sh
+"$expect_error" 2 ".svg" -- "$pge" render "$fixtures/basics/newtons-cradle.json" -o "$out/picture.png" ||
+  fail "a .png output: not exit 2 with a message naming the forms"
+"$expect_error" 3 "no-such-scene.json" -- "$pge" render "$out/no-such-scene.json" -o "$out/missing.svg" ||
+  fail "a missing scene: not exit 3 with a message naming the file"
 
 set +e
 "$checker" "$out/newtons-cradle.html" "$out/snooker.html"
