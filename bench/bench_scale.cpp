@@ -12,7 +12,9 @@
 // collision rate per body does not depend on N); each iteration then processes 10,000 events.
 // That matters: robust and certified re-derive every event time exactly, by a walk over the
 // doubles around the predicted time whose length grows with the prediction's error in ulps of
-// the clock, large early in a run (a clock near 0 has tiny ulps) and larger in a larger box. Counters: ns_per_event, events_per_second,
+// the clock, large early in a run (a clock near 0 has tiny ulps) and larger in a larger box
+// (each step's sign is filtered in floating point, exact only where the filter cannot decide).
+// Counters: ns_per_event, events_per_second,
 // bytes_per_body (World::memory_bytes() / bodies, after the warm-up), peak_rss_mb (the process's
 // peak so far: run one benchmark per process to read it for that scene).
 // Usage: bench_scale [google benchmark flags], e.g. --benchmark_filter='gas/' ; PGE_BENCH_SEED

@@ -22,13 +22,15 @@ template <class T> struct BodyShape {
   bool fixed = false;
   T radius{};            // circles
   T reach{};             // farthest point of the body from its position (circles: the radius)
+  // Next to the radius: every prediction of two circles reads both (pair_scale), and with 1e5
+  // bodies each further cache line of a candidate is another miss.
+  T span{};              // largest coordinate magnitude of `world` (fixed) or `local`
   Vec2<T> seg_a, seg_b;  // fixed segments: world endpoints (world[0], world[1])
   // Polygons and segments (outlines, see geometry.hpp: a segment has the edges a->b and b->a).
   std::vector<Vec2<T>> local;     // vertices relative to the position, as in the scene
   std::vector<Vec2<T>> world;     // fixed bodies: position + local, rounded once
   std::vector<Vec2<T>> edges;     // vertex k+1 - vertex k, from `world` if fixed, else `local`
   std::vector<T> edge_length;     // |edges[k]|
-  T span{};                       // largest coordinate magnitude of `world` (fixed) or `local`
   T size{};                       // larger side of the bounding box
 
   bool is_outline() const { return kind != ShapeKind::Circle; }

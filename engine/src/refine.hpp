@@ -70,6 +70,15 @@ using ExactVec = Vec2<Exact>;
 
 template <class T> ExactVec exact_vec(const Vec2<T>& v) { return {Exact::of(v.x), Exact::of(v.y)}; }
 
+// One body's path and shape as stored: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2, read as
+// exact numbers (a fixed body stays at p0).
+template <class T> struct Path {
+  const BodyShape<T>* shape = nullptr;
+  bool fixed = false;
+  T t0{};
+  Vec2<T> p0, v0, acc;
+};
+
 // One body as the exact contact functions read it.
 template <class T> struct ExactBody {
   const BodyShape<T>* shape = nullptr;
@@ -93,60 +102,283 @@ template <class T> struct ExactBody {
   }
 };
 
-template <class T>
-ExactBody<T> exact_body(const BodyShape<T>& shape, bool fixed, const T& t0, const Vec2<T>& p0, const Vec2<T>& v0,
-                        const Vec2<T>& acc) {
+template <class T> ExactBody<T> exact_body(const Path<T>& x) {
   ExactBody<T> b;
-  b.shape = &shape;
-  b.fixed = fixed;
-  b.p0 = exact_vec(p0);
-  if (!fixed) {
-    b.t0 = Exact::of(t0);
-    b.v0 = exact_vec(v0);
-    b.half_acc = {Exact::of(acc.x).half(), Exact::of(acc.y).half()};
+  b.shape = x.shape;
+  b.fixed = x.fixed;
+  b.p0 = exact_vec(x.p0);
+  if (!x.fixed) {
+    b.t0 = Exact::of(x.t0);
+    b.v0 = exact_vec(x.v0);
+    b.half_acc = {Exact::of(x.acc.x).half(), Exact::of(x.acc.y).half()};
   }
   return b;
 }
 
-// Sign of the exact contact function of the scheduled feature pair at time t (negative:
-// overlapping, zero: touching).
-template <class T>
-int contact_sign(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T>& s, const Exact& t) {
-  const ExactVec pa = a.position(t), pb = b.position(t);
+// The contact function of the scheduled feature pair, its sign (negative: overlapping, zero:
+// touching), in any arithmetic: a View gives each body's kind and radius, its points (its
+// centre, its vertex k) and edge vectors in the arithmetic's numbers, and the difference of two
+// points; sign_of gives a number's sign, or nothing if the arithmetic cannot decide it. The
+// exact evaluation (ExactView, dyadic rationals) and the filter (FilterView below, floating
+// point with an error bound) are both this function.
+template <class View, class T>
+std::optional<int> feature_sign(const View& a, const View& b, const Scheduled<T>& s) {
   switch (s.contact) {
     case ContactKind::CircleCircle: {
-      const ExactVec d = pb - pa;
-      const Exact rr = Exact::of(a.shape->radius) + Exact::of(b.shape->radius);
-      return (dot(d, d) - rr * rr).sign();
+      const auto d = View::difference(b.centre(), a.centre());
+      const auto rr = a.radius() + b.radius();
+      return sign_of(dot(d, d) - rr * rr);
     }
     case ContactKind::CircleEdge:
     case ContactKind::CircleVertex: {
-      const bool a_circle = a.shape->kind == ShapeKind::Circle;
-      const ExactBody<T>& o = a_circle ? b : a;
-      const ExactVec& c = a_circle ? pa : pb;
-      const ExactVec& po = a_circle ? pb : pa;
+      const bool a_circle = a.kind() == ShapeKind::Circle;
+      const View& c = a_circle ? a : b;
+      const View& o = a_circle ? b : a;
       const std::size_t k = a_circle ? s.feature_b : s.feature_a;
-      const Exact r = Exact::of(a_circle ? a.shape->radius : b.shape->radius);
-      const ExactVec q = c - o.vertex(po, k);
-      if (s.contact == ContactKind::CircleVertex) return (dot(q, q) - r * r).sign();
-      const ExactVec e = o.edge(k);
-      const Exact side = cross(q, e);
-      if (o.shape->kind == ShapeKind::Polygon && side.sign() <= 0) return -1;  // behind a one-sided edge
-      return (side * side - r * r * dot(e, e)).sign();
+      const auto r = c.radius();
+      const auto q = View::difference(c.centre(), o.vertex(k));
+      if (s.contact == ContactKind::CircleVertex) return sign_of(dot(q, q) - r * r);
+      const auto e = o.edge(k);
+      const auto side = cross(q, e);
+      if (o.kind() == ShapeKind::Polygon) {  // one-sided: side <= 0 is behind the edge
+        const std::optional<int> front = sign_of(side);
+        if (!front) return std::nullopt;
+        if (*front <= 0) return -1;
+      }
+      return sign_of(side * side - r * r * dot(e, e));
     }
     case ContactKind::VertexEdge:
     case ContactKind::EdgeVertex: {
       const bool a_vertex = s.contact == ContactKind::VertexEdge;
-      const ExactBody<T>& vb = a_vertex ? a : b;
-      const ExactBody<T>& eb = a_vertex ? b : a;
+      const View& vb = a_vertex ? a : b;
+      const View& eb = a_vertex ? b : a;
       const std::size_t k = a_vertex ? s.feature_a : s.feature_b;  // vertex
       const std::size_t j = a_vertex ? s.feature_b : s.feature_a;  // internal edge
-      const ExactVec d = vb.vertex(a_vertex ? pa : pb, k) - eb.vertex(a_vertex ? pb : pa, j);
-      return cross(d, eb.edge(j)).sign();
+      return sign_of(cross(View::difference(vb.vertex(k), eb.vertex(j)), eb.edge(j)));
     }
   }
   return 1;
 }
+
+inline std::optional<int> sign_of(const Exact& x) { return x.sign(); }
+
+// An exact body at time t: its points are exact positions.
+template <class T> class ExactView {
+ public:
+  ExactView(const ExactBody<T>& b, const Exact& t) : b_(b), p_(b.position(t)) {}
+  ShapeKind kind() const { return b_.shape->kind; }
+  Exact radius() const { return Exact::of(b_.shape->radius); }
+  const ExactVec& centre() const { return p_; }
+  ExactVec vertex(std::size_t k) const { return b_.vertex(p_, k); }
+  ExactVec edge(std::size_t k) const { return b_.edge(k); }
+  static ExactVec difference(const ExactVec& y, const ExactVec& x) { return y - x; }
+
+ private:
+  const ExactBody<T>& b_;
+  ExactVec p_;
+};
+
+// Sign of the exact contact function of the scheduled feature pair at time t.
+template <class T>
+int contact_sign(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T>& s, const Exact& t) {
+  return *feature_sign(ExactView<T>(a, t), ExactView<T>(b, t), s);
+}
+
+// --- A floating-point filter in front of contact_sign.
+// Most signs the refinement asks for are far from zero in floating point: the walk probes T
+// values an ulp or more from the crossing, where the contact function is larger than the
+// rounding of a careful evaluation. The filter evaluates the same function (feature_sign, with
+// a FilterView) with a running bound on its error and answers only when the bound decides the
+// sign; otherwise the exact evaluation answers (the filtered-then-exact pattern of CGAL's
+// filtered predicates and Shewchuk's adaptive orientation tests). Two things make it decide
+// often:
+//   - positions are never formed: the difference of the two features' points is built as
+//     (base_b - base_a) + (offset_b - offset_a) + (motion_b - motion_a), where a base is a
+//     stored p0 or fixed vertex, an offset a polygon's local vertex and a motion
+//     v0 tau + acc tau^2 / 2, so that the rounding is relative to the distance between the
+//     bodies, not to their distance from the origin (a large box decides as often as a small
+//     one);
+//   - the time is passed as t + dt with both T values (dt = half the gap between two adjacent
+//     T values, for the walk's final midpoint), so that tau = (t - t0) + dt is rounded
+//     relative to tau.
+// The filter runs in a wider type than T: double for float, long double for double (x87's
+// 64-bit significand on x86-64: 11 bits more, which leaves about 1 sign in 1,000 undecided in
+// the hard cases of tests/test_refine_filter.cpp and 1 in 1,700 on a 1,000-disc gas; in double
+// itself 40% of the gas's signs stayed undecided, since the walk's signs sit within an ulp or
+// two of the clock from the crossing). Long double and quad have no wider hardware type; in
+// their own precision the filter decided 2% of those signs (same test), so they go to the exact
+// evaluation directly (kFilterPays).
+
+template <class T> struct FilterScalar { using type = T; };
+template <> struct FilterScalar<float> { using type = double; };
+template <> struct FilterScalar<double> { using type = long double; };
+template <class T>
+inline constexpr bool kFilterPays = std::numeric_limits<typename FilterScalar<T>::type>::digits > std::numeric_limits<T>::digits;
+
+// Whether E's arithmetic really carries the digits numeric_limits says: x87's precision control
+// can be set to 53 bits (some libraries do), and then a long double bound would be too small.
+// Checked once at run time; if not, the filter stays off (the exact signs answer everything).
+template <class E> bool arithmetic_has_its_digits() {
+  static const bool ok = [] {
+    volatile E one = E(1);  // volatile: computed by the processor as configured, not folded
+    volatile E tiny = std::numeric_limits<E>::epsilon();
+    const E sum = one + tiny;
+    return sum != one;
+  }();
+  return ok;
+}
+
+// A computed value v and a bound e on its distance from the exact value of the expression.
+// Every operation's rounding is bounded by epsilon |result| (twice the unit roundoff of
+// round-to-nearest, so directed rounding is covered too); that holds for sums always and for
+// products whose result is a normal number, so a product of non-zero factors that comes out
+// below kTiny (near underflow) marks the value lost (undecided) instead: adding an absolute
+// term per product would fill the bounds with subnormal numbers, which cost a hundred cycles
+// per operation on x86. The bound's own rounding (a relative (1 + u)^k for an expression of k
+// operations) is covered by the factor 2 in decided_sign, and the smallest normal number
+// there covers subnormal bounds. A NaN or infinity anywhere leaves the comparison false:
+// undecided.
+template <class E> struct Bounded {
+  E v{0};
+  E e{0};
+  bool lost = false;
+  Bounded() = default;
+  Bounded(int x) : v(x) {}  // NOLINT: Vec2's members start as {0}
+  static Bounded of(const E& x) {
+    Bounded b;
+    b.v = x;
+    return b;
+  }
+  static E eps() { return std::numeric_limits<E>::epsilon(); }
+  static E tiny() { return std::numeric_limits<E>::min() / std::numeric_limits<E>::epsilon(); }
+  friend Bounded operator+(const Bounded& a, const Bounded& b) {
+    using std::abs;
+    Bounded r;
+    r.v = a.v + b.v;
+    r.e = a.e + b.e + eps() * abs(r.v);
+    r.lost = a.lost || b.lost;
+    return r;
+  }
+  friend Bounded operator-(const Bounded& a, const Bounded& b) {
+    using std::abs;
+    Bounded r;
+    r.v = a.v - b.v;
+    r.e = a.e + b.e + eps() * abs(r.v);
+    r.lost = a.lost || b.lost;
+    return r;
+  }
+  friend Bounded operator-(const Bounded& a) {
+    Bounded r = a;
+    r.v = -a.v;
+    return r;
+  }
+  friend Bounded operator*(const Bounded& a, const Bounded& b) {
+    using std::abs;
+    Bounded r;
+    r.v = a.v * b.v;
+    r.e = abs(a.v) * b.e + abs(b.v) * a.e + a.e * b.e + eps() * abs(r.v);
+    r.lost = a.lost || b.lost || (abs(r.v) < tiny() && a.v != E(0) && b.v != E(0));
+    return r;
+  }
+  // The exact value's sign if the bound decides it.
+  std::optional<int> decided_sign() const {
+    if (lost) return std::nullopt;
+    const E margin = E(2) * e + std::numeric_limits<E>::min();
+    if (v > margin) return 1;
+    if (-v > margin) return -1;
+    return std::nullopt;
+  }
+};
+
+template <class E> std::optional<int> sign_of(const Bounded<E>& x) { return x.decided_sign(); }
+
+// A body at the time t + dt for the filter: a point is kept as base + offset + motion (a stored
+// p0 or fixed vertex, a polygon's local vertex, and v0 tau + acc tau^2 / 2 if the body moves),
+// and the difference of two points subtracts bases first, then offsets, then motions.
+template <class T> class FilterView {
+ public:
+  using E = typename FilterScalar<T>::type;
+  using B = Bounded<E>;
+  using V = Vec2<B>;
+  struct Point {
+    Vec2<T> base, offset;
+    const V* motion;  // nullptr: the point does not move
+  };
+  FilterView(const Path<T>& x, const T& t, const T& dt) : x_(x) {
+    if (x.fixed) return;
+    const B tau = (num(t) - num(x.t0)) + num(dt);
+    const V half_acc = vec(x.acc) * B::of(E(0.5));
+    motion_ = (vec(x.v0) + half_acc * tau) * tau;
+  }
+  ShapeKind kind() const { return x_.shape->kind; }
+  B radius() const { return num(x_.shape->radius); }
+  Point centre() const { return {x_.p0, {}, x_.fixed ? nullptr : &motion_}; }
+  Point vertex(std::size_t k) const {
+    if (x_.shape->fixed) return {x_.shape->world[k], {}, nullptr};
+    return {x_.p0, x_.shape->local[k], x_.fixed ? nullptr : &motion_};
+  }
+  V edge(std::size_t k) const {
+    const auto& v = x_.shape->fixed ? x_.shape->world : x_.shape->local;
+    return vec(v[(k + 1) % v.size()]) - vec(v[k]);
+  }
+  static V difference(const Point& y, const Point& x) {
+    V d = vec(y.base) - vec(x.base);
+    if (!(y.offset == Vec2<T>{} && x.offset == Vec2<T>{})) d = d + (vec(y.offset) - vec(x.offset));
+    if (y.motion) d = d + *y.motion;
+    if (x.motion) d = d - *x.motion;
+    return d;
+  }
+
+ private:
+  static B num(const T& v) { return B::of(E(v)); }
+  static V vec(const Vec2<T>& v) { return {num(v.x), num(v.y)}; }
+  const Path<T>& x_;
+  V motion_;
+};
+
+// The sign of contact_sign's function at the time t + dt (exactly, as real numbers), or nothing
+// if rounding could change it.
+template <class T>
+std::optional<int> filtered_contact_sign(const Path<T>& a, const Path<T>& b, const Scheduled<T>& s, const T& t,
+                                         const T& dt) {
+  return feature_sign(FilterView<T>(a, t, dt), FilterView<T>(b, t, dt), s);
+}
+
+// Signs the filter decided, and signs evaluated exactly, on this thread (read by tests).
+inline thread_local std::uint64_t filtered_signs = 0;
+inline thread_local std::uint64_t exact_signs = 0;
+
+// The sign of a scheduled contact's function, filtered first; the exact bodies are built on
+// the first sign the filter cannot decide.
+template <class T> class ContactSigner {
+ public:
+  ContactSigner(const Path<T>& a, const Path<T>& b, const Scheduled<T>& s) : a_(a), b_(b), s_(s) {}
+  // At t + dt.
+  int operator()(const T& t, const T& dt = T(0)) {
+    if constexpr (kFilterPays<T>) {
+      if (!arithmetic_has_its_digits<typename FilterScalar<T>::type>()) return exact(Exact::of(t) + Exact::of(dt));
+      if (const std::optional<int> f = filtered_contact_sign(a_, b_, s_, t, dt)) {
+        ++filtered_signs;
+        return *f;
+      }
+    }
+    return exact(dt == T(0) ? Exact::of(t) : Exact::of(t) + Exact::of(dt));
+  }
+  int exact(const Exact& t) {
+    ++exact_signs;
+    if (!ea_) {
+      ea_ = exact_body(a_);
+      eb_ = exact_body(b_);
+    }
+    return contact_sign(*ea_, *eb_, s_, t);
+  }
+
+ private:
+  const Path<T>& a_;
+  const Path<T>& b_;
+  const Scheduled<T>& s_;
+  std::optional<ExactBody<T>> ea_, eb_;
+};
 
 // --- Near-grazes of two circles, decided exactly (robust and certified).
 // The contact polynomial built from rounded states decides a pair that passes within rounding
@@ -240,9 +472,11 @@ inline constexpr int kRefineMaxDoublings = 80;
 // The T nearest the exact crossing (positive before, non-positive after) closest to
 // `predicted`, not before `now`: `now` itself when the pair is already touching or overlapping
 // then; nothing when no crossing is found near it (a touch the exact paths never make).
-template <class T, class Sign> std::optional<T> correctly_rounded_crossing(const T& predicted, const T& now, Sign sign) {
+// `sign(t, dt)` is the contact function's sign at t + dt, `sign.exact(t)` at an exact time
+// (ContactSigner).
+template <class T, class Sign> std::optional<T> correctly_rounded_crossing(const T& predicted, const T& now, Sign& sign) {
   using std::abs;
-  const auto at = [&](const T& t) { return sign(Exact::of(t)); };
+  const auto at = [&](const T& t) { return sign(t); };
   const T unit = std::max(abs(predicted) * std::numeric_limits<T>::epsilon(), std::numeric_limits<T>::denorm_min());
   T lo = predicted, hi = predicted;
   T step = unit;
@@ -281,11 +515,16 @@ template <class T, class Sign> std::optional<T> correctly_rounded_crossing(const
     if (!(mid > lo && mid < hi)) break;
     (at(mid) > 0 ? lo : hi) = mid;
   }
-  const Exact mid(detail::exact::midpoint(detail::exact::to_dyadic(lo), detail::exact::to_dyadic(hi)));
-  const int s = sign(mid);
+  // The sign at the exact midpoint lo + (hi - lo) / 2: hi - lo is exact for adjacent values
+  // (Sterbenz), and so is its half unless it is the smallest subnormal.
+  const T half = (hi - lo) / T(2);
+  const auto exact_mid = [&] {
+    return Exact(detail::exact::midpoint(detail::exact::to_dyadic(lo), detail::exact::to_dyadic(hi)));
+  };
+  const int s = half + half == hi - lo ? sign(lo, half) : sign.exact(exact_mid());
   if (s > 0) return hi;  // the crossing is past the midpoint
   if (s < 0) return std::max(lo, now);
-  return std::max(detail::exact::round_to_scalar<T>(mid.d), now);  // exactly halfway: ties to even
+  return std::max(detail::exact::round_to_scalar<T>(exact_mid().d), now);  // exactly halfway: ties to even
 }
 
 }  // namespace refine

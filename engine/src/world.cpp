@@ -45,8 +45,9 @@ template <class T> struct World<T>::Impl {
   };
 
   // Aligned to a cache line, with what every prediction reads first: for double, the motion
-  // fills the first line and the version, the exclusion and the shape's kind and radius the
-  // second, so a candidate costs two lines (with 1e5 bodies, the bodies do not fit in cache).
+  // fills the first line and the version, the exclusion and the shape's kind, radius, reach and
+  // span the second, so a candidate costs two lines (with 1e5 bodies, the bodies do not fit in
+  // cache; visit_cells prefetches both).
   struct alignas(64) Body {
     bool fixed = false;
     int supports = 0;  // faces in `support` that hold the body
@@ -98,6 +99,7 @@ template <class T> struct World<T>::Impl {
   CellGrid grid;
   std::vector<std::uint32_t> cell;       // per body: its cell (moving), kInCells, kOutside or kGlobal
   std::vector<BodyIndex> globals;        // bodies the grid does not hold
+  std::vector<BodyIndex> candidates;     // scratch list of visit_cells
   std::vector<std::uint32_t> seen;       // per body: the last candidate scan that met it (fixed
   std::uint32_t scan = 0;                // bodies sit in several cells)
   EventHeap<T> crossings;                // one scheduled cell crossing per moving body in the grid
@@ -166,17 +168,15 @@ template <class T> struct World<T>::Impl {
     return c;
   }
 
-  // A body as the exact contact functions read it (refine.hpp).
-  static refine::ExactBody<T> exact_of(const Body& b) {
-    return refine::exact_body(b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc);
-  }
+  // A body's stored path, and the same as the exact contact functions read it (refine.hpp).
+  static refine::Path<T> path_of(const Body& b) { return {&b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc}; }
+  static refine::ExactBody<T> exact_of(const Body& b) { return refine::exact_body(path_of(b)); }
 
   // A scheduled contact's time, correctly rounded from the exact paths (refine.hpp); nothing if
   // no crossing is found near the predicted time.
   std::optional<T> refined_time(const Scheduled<T>& s) const {
-    const auto ea = exact_of(bodies[s.lo]);
-    const auto eb = exact_of(bodies[s.hi]);
-    const auto sign = [&](const refine::Exact& t) { return refine::contact_sign(ea, eb, s, t); };
+    const refine::Path<T> a = path_of(bodies[s.lo]), b = path_of(bodies[s.hi]);
+    refine::ContactSigner<T> sign(a, b, s);
     return refine::correctly_rounded_crossing(s.time, now, sign);
   }
 
@@ -329,9 +329,34 @@ template <class T> struct World<T>::Impl {
         if (j != i) f(j);
       return;
     }
-    next_scan();
-    grid.visit_around(cell[i], [&](BodyIndex j) { visit_once(i, j, f); });
+    visit_cells(i, cell[i], kGlobal, f);
     for (BodyIndex j : globals) f(j);
+  }
+
+  // Calls f(j) for the bodies j != i in the 3x3 cells around `c`, less those also around
+  // `except` (a cell, or kGlobal), fixed bodies once, in the grid's order. The candidates are
+  // gathered and their Body lines prefetched first: with 1e5 bodies they are scattered over
+  // memory, and a prediction is too long for the processor to reach the next candidate's load
+  // on its own, so the misses would otherwise come one after another.
+  template <class F> void visit_cells(BodyIndex i, std::uint32_t c, std::uint32_t except, F& f) {
+    std::vector<BodyIndex> list;
+    list.swap(candidates);  // reentrant: a nested call would find an empty scratch list
+    list.clear();
+    next_scan();
+    const auto keep = [&](BodyIndex j) { list.push_back(j); };
+    grid.visit_around(c, [&](BodyIndex j) { visit_once(i, j, keep); }, except);
+    for (BodyIndex j : list) prefetch_hot(bodies[j]);
+    for (BodyIndex j : list) f(j);
+    candidates.swap(list);
+  }
+  // The two cache lines of a Body that a prediction of two circles reads (see Body).
+  static void prefetch_hot(const Body& b) {
+#if defined(__GNUC__)
+    __builtin_prefetch(&b);
+    __builtin_prefetch(reinterpret_cast<const char*>(&b) + 64);
+#else
+    (void)b;
+#endif
   }
 
   void next_scan() {
@@ -546,9 +571,8 @@ template <class T> struct World<T>::Impl {
     grid.insert(c, i);
     cell[i] = c;
     Scheduled<T> best = heap.at(i);
-    next_scan();
     auto f = [&](BodyIndex j) { offer(i, j, best); };
-    grid.visit_around(c, [&](BodyIndex j) { visit_once(i, j, f); }, old);
+    visit_cells(i, c, old, f);
     heap.set(i, best);
     schedule_crossing(i, at);
     if (cell[i] == kGlobal) reschedule(i);
