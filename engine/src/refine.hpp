@@ -1,7 +1,7 @@
-// Correctly rounded event times for the certified solver. A prediction solves the contact
-// polynomial built in T from the bodies' rounded states at `now`; its root is exact for that
-// polynomial, but the polynomial is not the exact contact function of the paths the bodies
-// really follow. Before a certified event is processed its time is therefore re-derived from
+// Correctly rounded event times for the robust and certified solvers. A prediction solves the
+// contact polynomial built in T from the bodies' rounded states at `now`; its root is exact for
+// that polynomial, but the polynomial is not the exact contact function of the paths the bodies
+// really follow. Before such an event is processed its time is therefore re-derived from
 // those paths: each moving body follows p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2 with its
 // stored values read as exact numbers (the state the exact oracle reads, oracle/), and the
 // event's feature pair has an exact contact function whose sign is decided in dyadic rationals.
@@ -13,7 +13,8 @@
 //                  is one-sided (side <= 0 is behind it: negative), a segment's two-sided
 //   circle-vertex  |centre - vertex|^2 - r^2
 //   vertex-edge    cross(vertex - edge start, e)
-// Costs a few dozen exact evaluations per processed event (not per prediction).
+// Costs a few signs per processed event (not per prediction), nearly all decided by a
+// floating-point filter (filtered_contact_sign) before any exact arithmetic.
 #pragma once
 
 #include "body_shape.hpp"
@@ -356,10 +357,11 @@ template <class T> class ContactSigner {
   // At t + dt.
   int operator()(const T& t, const T& dt = T(0)) {
     if constexpr (kFilterPays<T>) {
-      if (!arithmetic_has_its_digits<typename FilterScalar<T>::type>()) return exact(Exact::of(t) + Exact::of(dt));
-      if (const std::optional<int> f = filtered_contact_sign(a_, b_, s_, t, dt)) {
-        ++filtered_signs;
-        return *f;
+      if (arithmetic_has_its_digits<typename FilterScalar<T>::type>()) {
+        if (const std::optional<int> f = filtered_contact_sign(a_, b_, s_, t, dt)) {
+          ++filtered_signs;
+          return *f;
+        }
       }
     }
     return exact(dt == T(0) ? Exact::of(t) : Exact::of(t) + Exact::of(dt));
