@@ -233,7 +233,7 @@ template <class E> bool arithmetic_has_its_digits() {
 // Every operation's rounding is bounded by epsilon |result| (twice the unit roundoff of
 // round-to-nearest, so directed rounding is covered too); that holds for sums always and for
 // products whose result is a normal number, so a product of non-zero factors that comes out
-// below kTiny (near underflow) marks the value lost (undecided) instead: adding an absolute
+// below tiny() (near underflow) marks the value lost (undecided) instead: adding an absolute
 // term per product would fill the bounds with subnormal numbers, which cost a hundred cycles
 // per operation on x86. The bound's own rounding (a relative (1 + u)^k for an expression of k
 // operations) is covered by the factor 2 in decided_sign, and the smallest normal number
