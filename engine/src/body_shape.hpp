@@ -21,10 +21,10 @@ template <class T> struct BodyShape {
   ShapeKind kind = ShapeKind::Circle;
   bool fixed = false;
   T radius{};            // circles
-  T reach{};             // farthest point of the body from its position (circles: the radius)
   // Next to the radius: every prediction of two circles reads both (pair_scale), and with 1e5
-  // bodies each further cache line of a candidate is another miss.
+  // bodies each further cache line of a candidate is another miss (see World's Body).
   T span{};              // largest coordinate magnitude of `world` (fixed) or `local`
+  T reach{};             // farthest point of the body from its position (circles: the radius)
   Vec2<T> seg_a, seg_b;  // fixed segments: world endpoints (world[0], world[1])
   // Polygons and segments (outlines, see geometry.hpp: a segment has the edges a->b and b->a).
   std::vector<Vec2<T>> local;     // vertices relative to the position, as in the scene

@@ -1,10 +1,13 @@
-// One scheduled contact per moving body, in an indexed 4-ary min-heap: updating a body's
-// event is O(log n) and leaves no stale copies behind.
+// One scheduled contact and one cell crossing per moving body, in an indexed 4-ary min-heap:
+// updating a body's events is O(log n) and leaves no stale copies behind.
 #pragma once
 
 #include "pge/event.hpp"
 
+#include "aligned.hpp"
+
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -43,74 +46,147 @@ template <class T> struct Scheduled {
   }
 };
 
-// The heap array holds each entry's time beside its owner, so that sifting compares times in
-// contiguous memory and reads the full entry only to break a tie: with 1e5 bodies the entries
-// no longer fit in cache, and an indirect read per comparison was the queue's main cost.
+// Each moving body owns two events: its earliest predicted contact (a Scheduled entry) and,
+// with the grid on, its next cell crossing (a time). One heap orders the bodies by the earlier
+// of the two, so that an event updates a body's node once (a collision reschedules both
+// events of each of its bodies; a crossing, the body's contact and crossing): with 1e5 bodies
+// every sift is a few cache misses, and two heaps took twice as many. At equal times a
+// crossing comes first (it changes no motion, and the contacts it may add are predicted from
+// the paths as they are).
+// The heap array holds each node's time beside its owner, so that sifting compares times in
+// contiguous memory and reads the full entry only to break a tie between contacts.
 template <class T> class EventHeap {
  public:
   void reset(std::size_t body_count, const std::vector<BodyIndex>& members) {
     entries_.assign(body_count, Scheduled<T>{});
+    crossing_.assign(body_count, never());
     pos_.assign(body_count, kAbsent);
-    heap_.clear();
-    heap_.reserve(members.size());
+    heap_.assign(kRoot, Node{});
+    heap_.reserve(kRoot + members.size());
     for (BodyIndex i : members) {
       pos_[i] = static_cast<std::uint32_t>(heap_.size());
-      heap_.push_back({entries_[i].time, i});
+      heap_.push_back(node(i));
     }
   }
-  bool empty() const { return heap_.empty(); }
-  const Scheduled<T>& top() const { return entries_[heap_.front().owner]; }
-  BodyIndex top_index() const { return heap_.front().owner; }
+  bool empty() const { return heap_.size() == kRoot; }
+  // Whether the earliest event is a cell crossing (then top_time() is its time); otherwise it
+  // is top(), the earliest contact (invalid if nothing is scheduled at all).
+  bool top_is_crossing() const { return heap_[kRoot].crossing_first != 0; }
+  T top_time() const { return heap_[kRoot].time; }
+  const Scheduled<T>& top() const { return entries_[heap_[kRoot].owner]; }
+  BodyIndex top_index() const { return heap_[kRoot].owner; }
   const Scheduled<T>& at(BodyIndex i) const { return entries_[i]; }
+  // Calls f(owner) for the bodies whose events come right after the top's (the root's
+  // children, one cache line of nodes): what the next steps will most likely read.
+  template <class F> void visit_next(F f) const {
+    for (std::size_t c = first_child(kRoot); c < first_child(kRoot) + kArity && c < heap_.size(); ++c) f(heap_[c].owner);
+  }
+  // Prefetches body i's contact entry.
+  void prefetch(BodyIndex i) const {
+#if defined(__GNUC__)
+    __builtin_prefetch(&entries_[i]);
+#else
+    (void)i;
+#endif
+  }
 
-  // Owners of every valid entry whose time is <= bound, in heap order (children are never
-  // earlier than their parent, so the walk stops at the first later entry on each branch).
+  // Owners of every valid contact whose time is <= bound (children are never earlier than
+  // their parent, so the walk stops at the first later node on each branch).
   template <class F> void visit_up_to(const T& bound, F f) const {
-    std::vector<std::size_t> stack;
-    if (!heap_.empty()) stack.push_back(0);
+    std::vector<std::size_t>& stack = stack_;
+    stack.clear();
+    if (!empty()) stack.push_back(kRoot);
     while (!stack.empty()) {
       const std::size_t k = stack.back();
       stack.pop_back();
+      if (!(heap_[k].time <= bound)) continue;
       const Scheduled<T>& e = entries_[heap_[k].owner];
-      if (!e.valid() || !(e.time <= bound)) continue;
-      f(heap_[k].owner);
-      for (std::size_t c = kArity * k + 1; c <= kArity * k + kArity && c < heap_.size(); ++c) stack.push_back(c);
+      if (e.valid() && e.time <= bound) f(heap_[k].owner);
+      for (std::size_t c = first_child(k); c < first_child(k) + kArity && c < heap_.size(); ++c) stack.push_back(c);
     }
   }
 
   std::size_t memory_bytes() const {
-    return entries_.capacity() * sizeof(Scheduled<T>) + pos_.capacity() * sizeof(std::uint32_t) +
-           heap_.capacity() * sizeof(Node);
+    return entries_.capacity() * sizeof(Scheduled<T>) + crossing_.capacity() * sizeof(T) +
+           pos_.capacity() * sizeof(std::uint32_t) + heap_.capacity() * sizeof(Node) + stack_.capacity() * sizeof(std::size_t);
   }
 
+  // Replaces body i's contact; its crossing stays.
   void set(BodyIndex i, const Scheduled<T>& s) {
     entries_[i] = s;
-    const std::uint32_t k = pos_[i];
-    if (k == kAbsent) return;
-    heap_[k].time = s.time;
-    sift_up(k);
-    sift_down(pos_[i]);
+    update(i);
   }
+  // Replaces body i's contact and its crossing time (never(): none).
+  void set(BodyIndex i, const Scheduled<T>& s, const T& crossing) {
+    entries_[i] = s;
+    crossing_[i] = crossing;
+    update(i);
+  }
+  void set_crossing(BodyIndex i, const T& crossing) {
+    crossing_[i] = crossing;
+    update(i);
+  }
+
+  static T never() { return std::numeric_limits<T>::infinity(); }
 
  private:
   static constexpr std::uint32_t kAbsent = std::numeric_limits<std::uint32_t>::max();
   // Children per node: four halve the levels a sift crosses (each a likely cache miss once the
-  // heap outgrows the cache) for two more comparisons per level, in one or two cache lines.
+  // heap outgrows the cache) for two more comparisons per level, in one cache line.
   static constexpr std::size_t kArity = 4;
   struct Node {
-    T time;  // the entry's time (infinity when invalid)
-    BodyIndex owner;
+    T time{};  // the earlier of the contact's and the crossing's times (infinity: neither)
+    BodyIndex owner = kNoBody;
+    std::uint32_t crossing_first = 0;  // 1 if `time` is the crossing's
   };
+  // The root sits at index kRoot (the slots before it are unused), so that a node's children
+  // start on a multiple of kArity: with 16-byte nodes in a 64-byte aligned array (double) a
+  // sift reads one cache line per level instead of two.
+  static constexpr std::size_t kRoot = kArity - 1;
+  static constexpr std::size_t first_child(std::size_t k) { return kArity * k - kArity * (kArity - 2); }
+  static constexpr std::size_t parent(std::size_t k) { return (k + kArity * (kArity - 2)) / kArity; }
+  static_assert(first_child(kRoot) == kRoot + 1 && first_child(kRoot) % kArity == 0 && parent(first_child(kRoot)) == kRoot);
 
-  // The order of Scheduled::key_less; equal keys (one contact held by both of its bodies) are
-  // ordered by owner index. Invalid entries have an infinite time and sort last.
+  Node node(BodyIndex i) const {
+    const T& contact = entries_[i].time;  // infinity when invalid
+    const bool crossing_first = crossing_[i] <= contact && crossing_[i] != never();
+    return {crossing_first ? crossing_[i] : contact, i, crossing_first ? 1u : 0u};
+  }
+  // A later time only sinks and an earlier one only rises: the other direction's comparison
+  // would read a parent's or children's line for nothing. At an equal time the old key cannot
+  // be compared with the new one (the entry is already replaced), so both directions are tried.
+  void update(BodyIndex i) {
+    const std::uint32_t k = pos_[i];
+    if (k == kAbsent) return;
+    const Node n = node(i);
+    const Node old = heap_[k];
+    heap_[k] = n;
+    if (old.time < n.time) {
+      sift_down(k);
+    } else if (n.time < old.time) {
+      sift_up(k);
+    } else {
+      sift_up(k);
+      sift_down(pos_[i]);
+    }
+  }
+
+  // Time; at equal times crossings before contacts, crossings by owner, contacts in the order of
+  // Scheduled::key_less; equal keys (one contact held by both of its bodies) by owner.
   bool less(const Node& x, const Node& y) const {
     if (x.time < y.time) return true;
     if (y.time < x.time) return false;
-    const Scheduled<T>& a = entries_[x.owner];
-    const Scheduled<T>& b = entries_[y.owner];
-    if (a.key_less(b)) return true;
-    if (b.key_less(a)) return false;
+    // Two infinite times: bodies with nothing scheduled (a gas in a grid has many contacts
+    // missing: a body with no contact among its neighbours waits for its next cell crossing),
+    // in owner order without reading the entries, each a cache miss with 1e5 bodies.
+    if (x.time == never()) return x.owner < y.owner;
+    if (x.crossing_first != y.crossing_first) return x.crossing_first != 0;
+    if (x.crossing_first == 0) {
+      const Scheduled<T>& a = entries_[x.owner];
+      const Scheduled<T>& b = entries_[y.owner];
+      if (a.key_less(b)) return true;
+      if (b.key_less(a)) return false;
+    }
     return x.owner < y.owner;
   }
   void place(std::size_t k, const Node& n) {
@@ -119,11 +195,11 @@ template <class T> class EventHeap {
   }
   void sift_up(std::size_t k) {
     const Node n = heap_[k];
-    while (k > 0) {
-      const std::size_t parent = (k - 1) / kArity;
-      if (!less(n, heap_[parent])) break;
-      place(k, heap_[parent]);
-      k = parent;
+    while (k > kRoot) {
+      const std::size_t up = parent(k);
+      if (!less(n, heap_[up])) break;
+      place(k, heap_[up]);
+      k = up;
     }
     place(k, n);
   }
@@ -131,7 +207,7 @@ template <class T> class EventHeap {
     const Node n = heap_[k];
     const std::size_t size = heap_.size();
     for (;;) {
-      const std::size_t first = kArity * k + 1;
+      const std::size_t first = first_child(k);
       if (first >= size) break;
       std::size_t child = first;
       const std::size_t end = std::min(first + kArity, size);
@@ -144,9 +220,11 @@ template <class T> class EventHeap {
     place(k, n);
   }
 
-  std::vector<Scheduled<T>> entries_;
-  std::vector<std::uint32_t> pos_;  // each owner's index in heap_ (bodies are 32-bit indices)
-  std::vector<Node> heap_;
+  std::vector<Scheduled<T>, CacheAligned<Scheduled<T>>> entries_;
+  std::vector<T, CacheAligned<T>> crossing_;
+  std::vector<std::uint32_t, CacheAligned<std::uint32_t>> pos_;  // each owner's index in heap_
+  std::vector<Node, CacheAligned<Node>> heap_ = std::vector<Node, CacheAligned<Node>>(kRoot);
+  mutable std::vector<std::size_t> stack_;  // scratch of visit_up_to
 };
 
 }  // namespace pge

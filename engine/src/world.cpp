@@ -1,16 +1,17 @@
 // The event-driven world. Each moving body keeps its own reference time and is brought up to
 // date only when an event touches it; each keeps one scheduled event (its earliest predicted
-// contact) in an indexed binary heap, and an event whose partner has changed since it was
-// predicted is dropped and its owner rescheduled (lazy invalidation by version counters).
-// Which pairs a body is predicted against is the broad phase's choice (broad_phase.hpp): every
-// body, or the bodies in the grid cells around it; the grid's cell crossings are a second
-// indexed heap, merged with the first, that changes no motion.
+// contact) in an indexed 4-ary heap (event_heap.hpp), and an event whose partner has changed
+// since it was predicted is dropped and its owner rescheduled (lazy invalidation by version
+// counters). Which pairs a body is predicted against is the broad phase's choice
+// (broad_phase.hpp): every body, or the bodies in the grid cells around it; the grid's cell
+// crossings, which change no motion, are each body's second event in the same heap.
 #include "pge/world.hpp"
 
 #include "pge/constants.hpp"
 #include "pge/hash.hpp"
 #include "pge/validate.hpp"
 
+#include "aligned.hpp"
 #include "broad_phase.hpp"
 #include "contact.hpp"
 #include "event_heap.hpp"
@@ -45,9 +46,10 @@ template <class T> struct World<T>::Impl {
   };
 
   // Aligned to a cache line, with what every prediction reads first: for double, the motion
-  // fills the first line and the version, the exclusion and the shape's kind, radius, reach and
-  // span the second, so a candidate costs two lines (with 1e5 bodies, the bodies do not fit in
-  // cache; visit_cells prefetches both).
+  // fills the first line; the version, the exclusion, what a collision reads (inverse mass,
+  // restitution, storm count) and the shape's kind, radius and span the second. A prediction of
+  // two circles or a collision reads no other line of a body (with 1e5 bodies, the bodies do
+  // not fit in cache, and each further line is another miss; visit_cells prefetches both).
   struct alignas(64) Body {
     bool fixed = false;
     int supports = 0;  // faces in `support` that hold the body
@@ -56,16 +58,17 @@ template <class T> struct World<T>::Impl {
     Vec2<T> p0, v0, acc;
     std::uint64_t version = 0;  // bumped whenever the body's motion changes
     // A circle pair the exact paths say never touches although the rounded prediction did
-    // (refine_near_top): not predicted again while both bodies keep their motions.
+    // (refine_near_top): not predicted again while both bodies keep their motions (the
+    // versions below, read only when no_contact_with is the partner).
     BodyIndex no_contact_with = kNoBody;
-    std::uint64_t no_contact_version = 0, no_contact_partner_version = 0;
-    BodyShape<T> shape;         // kind and radius first; a moving polygon's vertex is p(t) + local
-    T mass{};
+    std::uint32_t storm_count = 0;
     T inv_mass{};          // 0 for fixed bodies
     T restitution{1};
-    std::string id;
     T storm_start{};
-    std::uint32_t storm_count = 0;
+    BodyShape<T> shape;         // kind, radius and span first; a moving polygon's vertex is p(t) + local
+    std::uint64_t no_contact_version = 0, no_contact_partner_version = 0;
+    T mass{};
+    std::string id;
     // The field's acceleration (own + gravity); `acc` is the path's, which resting removes
     // components from. At most two faces hold a body in 2-D (a V holds it still).
     Vec2<T> field_acc;
@@ -85,9 +88,9 @@ template <class T> struct World<T>::Impl {
     bool operator>(const Timer& o) const { return time > o.time || (time == o.time && seq > o.seq); }
   };
 
-  std::vector<Body> bodies;
+  std::vector<Body, CacheAligned<Body>> bodies;
   std::vector<BodyIndex> moving;         // indices of moving bodies, ascending
-  EventHeap<T> heap;                     // one scheduled contact per moving body
+  EventHeap<T> heap;                     // per moving body: its next contact and cell crossing
 
   // ---- Broad phase (broad_phase.hpp). With the grid off every body is a candidate of every
   // other; with it on, a body's candidates are the bodies in the 3x3 cells around its cell and
@@ -100,9 +103,9 @@ template <class T> struct World<T>::Impl {
   std::vector<std::uint32_t> cell;       // per body: its cell (moving), kInCells, kOutside or kGlobal
   std::vector<BodyIndex> globals;        // bodies the grid does not hold
   std::vector<BodyIndex> candidates;     // scratch list of visit_cells
+  std::vector<BodyIndex> refine_owners;  // scratch list of refine_near_top
   std::vector<std::uint32_t> seen;       // per body: the last candidate scan that met it (fixed
   std::uint32_t scan = 0;                // bodies sit in several cells)
-  EventHeap<T> crossings;                // one scheduled cell crossing per moving body in the grid
   std::priority_queue<Timer, std::vector<Timer>, std::greater<>> timers;
   std::uint64_t timer_seq = 0;
   T now{};
@@ -146,7 +149,7 @@ template <class T> struct World<T>::Impl {
     const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
     std::optional<PredictedContact<T>> c;
     if (solver != SolverKind::Fast && a.shape.kind == ShapeKind::Circle && b.shape.kind == ShapeKind::Circle) {
-      const Vec2<T> d = kb.p - ka.p, dv = kb.v - ka.v, da = kb.a - ka.a;
+      const Vec2<T> d = separation(a, b), dv = kb.v - ka.v, da = kb.a - ka.a;
       const T r = a.shape.radius + b.shape.radius;
       const Poly<T> p = distance_poly(d, dv, da, r);
       if (refine::near_graze(p, d, dv, da, r, pair_scale(a.shape, ka.p, b.shape, kb.p), horizon - now)) {
@@ -166,6 +169,20 @@ template <class T> struct World<T>::Impl {
     // still be before it (refine_near_top decides).
     if (c->time > (solver == SolverKind::Fast ? horizon : refine_bound(horizon))) return std::nullopt;
     return c;
+  }
+
+  // b's position minus a's at `now`, like terms first: the stored positions cancel before the
+  // displacements since each body's t0 are added, so the rounding is relative to the pair's
+  // separation rather than to its distance from the origin (kb.p - ka.p rounds each position
+  // first). The predicted time is then a few ulps of the clock from the exact one wherever the
+  // pair is, and the refinement's walk (refine.hpp) is short.
+  Vec2<T> separation(const Body& a, const Body& b) const {
+    const auto displacement = [&](const Body& x) {
+      if (x.fixed) return Vec2<T>{};
+      const T tau = now - x.t0;
+      return x.v0 * tau + x.acc * (tau * tau / T(2));
+    };
+    return (b.p0 - a.p0) + (displacement(b) - displacement(a));
   }
 
   // A body's stored path, and the same as the exact contact functions read it (refine.hpp).
@@ -232,7 +249,8 @@ template <class T> struct World<T>::Impl {
 
   bool refine_near_top() {
     const T bound = refine_bound(heap.top().time);
-    std::vector<BodyIndex> owners;
+    std::vector<BodyIndex>& owners = refine_owners;
+    owners.clear();
     heap.visit_up_to(bound, [&](BodyIndex i) {
       if (!heap.at(i).refined) owners.push_back(i);
     });
@@ -368,7 +386,7 @@ template <class T> struct World<T>::Impl {
   // A fixed body registered in several cells of one scan is offered once.
   template <class F> void visit_once(BodyIndex i, BodyIndex j, F& f) {
     if (j == i) return;
-    if (bodies[j].fixed) {
+    if (cell[j] == kInCells) {  // fixed (cell[] is dense; the Body itself would be a miss here)
       if (seen[j] == scan) return;
       seen[j] = scan;
     }
@@ -376,7 +394,7 @@ template <class T> struct World<T>::Impl {
   }
 
   void reschedule(BodyIndex i) {
-    if (grid_on) schedule_crossing(i, now);
+    const T crossing = grid_on ? crossing_time(i, now) : EventHeap<T>::never();
     Scheduled<T> best;
     for_candidates(i, [&](BodyIndex j) { offer(i, j, best); });
     const Body& b = bodies[i];
@@ -394,7 +412,7 @@ template <class T> struct World<T>::Impl {
       s.leave = true;
       best = s;
     }
-    heap.set(i, best);
+    heap.set(i, best, crossing);
   }
 
   // ---- Broad phase: cells, crossings, global bodies (broad_phase.hpp).
@@ -449,7 +467,6 @@ template <class T> struct World<T>::Impl {
     const auto nx = static_cast<std::uint32_t>(std::ceil(w / side) + 4), ny = static_cast<std::uint32_t>(std::ceil(h / side) + 4);
     grid.configure(lo_x - 2 * side, lo_y - 2 * side, side, margin, nx, ny);
     seen.assign(bodies.size(), 0u);
-    crossings.reset(bodies.size(), moving);
     for (std::size_t k = 0; k < moving.size(); ++k) {
       const BodyIndex i = moving[k];
       if (reach[k] > radius) {
@@ -510,15 +527,16 @@ template <class T> struct World<T>::Impl {
     cell[i] = kGlobal;
     globals.push_back(i);
     ++counts.global_bodies;
-    if (!bodies[i].fixed) crossings.set(i, Scheduled<T>{});
+    if (!bodies[i].fixed) heap.set_crossing(i, EventHeap<T>::never());
   }
 
-  // Schedules moving body i's next cell crossing from time `from` (its position then is inside
-  // its cell's exit box), or makes it global where double cell arithmetic cannot be trusted to
+  // The time of moving body i's next cell crossing from time `from` (its position then is
+  // inside its cell's exit box; never() if none before the horizon or if it is global), or
+  // makes it global (and answers never()) where double cell arithmetic cannot be trusted to
   // an eighth of the margin until then: its position evaluated in T and in double, and the
   // crossing's time rounded to T, each off by at most a few ulps of the terms' magnitudes.
-  void schedule_crossing(BodyIndex i, const T& from) {
-    if (cell[i] == kGlobal) return;
+  T crossing_time(BodyIndex i, const T& from) {
+    if (cell[i] == kGlobal) return EventHeap<T>::never();
     const Body& b = bodies[i];
     const Kinematics<T> k = kinematics(b, from);
     double lo_x, lo_y, hi_x, hi_y;
@@ -541,15 +559,9 @@ template <class T> struct World<T>::Impl {
                          speed * (to_double(abs(from)) + until);
     if (!(8 * eps * scale <= grid.margin() / 8)) {
       make_global(i);
-      return;
+      return EventHeap<T>::never();
     }
-    Scheduled<T> e;
-    if (s) {
-      e.time = from + T(*s);
-      e.lo = e.hi = e.partner = i;
-      e.refined = true;  // not a contact
-    }
-    crossings.set(i, e);
+    return s ? from + T(*s) : EventHeap<T>::never();
   }
 
   // Moving body i's crossing at `at`: it moves to the cell it is in then, and is predicted
@@ -573,8 +585,8 @@ template <class T> struct World<T>::Impl {
     Scheduled<T> best = heap.at(i);
     auto f = [&](BodyIndex j) { offer(i, j, best); };
     visit_cells(i, c, old, f);
-    heap.set(i, best);
-    schedule_crossing(i, at);
+    const T next = crossing_time(i, at);
+    heap.set(i, best, next);
     if (cell[i] == kGlobal) reschedule(i);
   }
 
@@ -1027,17 +1039,27 @@ template <class T> bool World<T>::step() {
       break;
     }
     // The three sources, merged in the fixed order: time, then kind (collision, timer, frame).
-    const Scheduled<T>* contact = w.heap.empty() ? nullptr : &w.heap.top();
+    // When the heap's earliest event is a cell crossing, every contact is at or after it.
+    const bool crossing_first = !w.heap.empty() && w.heap.top_is_crossing();
+    // The events after this one are most likely its children's in the heap: their entries and
+    // bodies are fetched while this one is processed (with 1e5 bodies each is a cache miss).
+    w.heap.visit_next([&](BodyIndex j) {
+      w.heap.prefetch(j);
+      Impl::prefetch_hot(w.bodies[j]);
+    });
+    const Scheduled<T>* contact = w.heap.empty() || crossing_first ? nullptr : &w.heap.top();
     const bool has_contact = contact && contact->valid();
     const bool has_timer = !w.timers.empty();
     const bool has_frame = w.fps > 0 && w.frame_time(w.next_frame) <= w.horizon;
     // A cell crossing due no later than every other event is bookkeeping: no motion changes
-    // and the clock stays where it is (cross()).
-    if (w.grid_on && !w.crossings.empty() && w.crossings.top().valid()) {
-      const T at = w.crossings.top().time;
-      if (at <= w.horizon && (!has_contact || !(contact->time < at)) && (!has_timer || !(w.timers.top().time < at)) &&
-          (!has_frame || !(w.frame_time(w.next_frame) < at))) {
-        w.cross(w.crossings.top_index(), at);
+    // and the clock stays where it is (cross()). Robust and certified take crossings up to the
+    // refinement bound past the horizon, so that a contact predicted there (behind the
+    // crossing in the heap) is still re-derived exactly below.
+    if (crossing_first) {
+      const T at = w.heap.top_time();
+      const T last = w.solver == SolverKind::Fast ? w.horizon : Impl::refine_bound(w.horizon);
+      if (at <= last && (!has_timer || !(w.timers.top().time < at)) && (!has_frame || !(w.frame_time(w.next_frame) < at))) {
+        w.cross(w.heap.top_index(), at);
         continue;
       }
     }
@@ -1168,7 +1190,7 @@ template <class T> std::size_t World<T>::memory_bytes() const {
     bytes += (s.local.capacity() + s.world.capacity() + s.edges.capacity()) * sizeof(Vec2<T>) +
              s.edge_length.capacity() * sizeof(T);
   }
-  bytes += w.moving.capacity() * sizeof(BodyIndex) + w.heap.memory_bytes() + w.crossings.memory_bytes();
+  bytes += w.moving.capacity() * sizeof(BodyIndex) + w.heap.memory_bytes();
   bytes += w.cell.capacity() * sizeof(std::uint32_t) + w.seen.capacity() * sizeof(std::uint32_t) +
            w.globals.capacity() * sizeof(BodyIndex) + w.grid.memory_bytes();
   return bytes;
