@@ -157,14 +157,9 @@ SceneCheck check_any(const LoadedScene& loaded, const Expect& expect, SolverKind
                      const CheckOptions& opt, Progress& progress) {
   ScalarKind scalar = ScalarKind::Double;
   if (!parse_scalar_kind(opt.scalar, scalar)) throw std::invalid_argument("unknown scalar type " + opt.scalar);
-  switch (scalar) {
-    case ScalarKind::Float: return check_scene<float>(loaded, expect, solver, std::move(outcome), opt, progress);
-    case ScalarKind::Double: return check_scene<double>(loaded, expect, solver, std::move(outcome), opt, progress);
-    case ScalarKind::LongDouble:
-      return check_scene<long double>(loaded, expect, solver, std::move(outcome), opt, progress);
-    case ScalarKind::QuadPrecision: return check_scene<Quad>(loaded, expect, solver, std::move(outcome), opt, progress);
-  }
-  throw std::logic_error("unknown scalar kind");
+  return with_scalar(scalar, [&](auto type) {
+    return check_scene<typename decltype(type)::type>(loaded, expect, solver, std::move(outcome), opt, progress);
+  });
 }
 
 // A run's exit code: a contrast run never fails; an unexpected storm keeps its own code.

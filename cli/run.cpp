@@ -169,13 +169,9 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
 }
 
 SceneResult simulate_any(const LoadedScene& loaded, const RunOptions& opt, TraceWriter* trace, const std::string& label) {
-  switch (opt.scalar) {
-    case ScalarKind::Float: return simulate<float>(loaded, opt, trace, label);
-    case ScalarKind::Double: return simulate<double>(loaded, opt, trace, label);
-    case ScalarKind::LongDouble: return simulate<long double>(loaded, opt, trace, label);
-    case ScalarKind::QuadPrecision: return simulate<Quad>(loaded, opt, trace, label);
-  }
-  throw std::logic_error("unknown scalar kind");
+  return with_scalar(opt.scalar, [&](auto type) {
+    return simulate<typename decltype(type)::type>(loaded, opt, trace, label);
+  });
 }
 
 // The trace file names for --trace-dir: each scene's file stem, and for stems that two scenes

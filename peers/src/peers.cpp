@@ -217,13 +217,9 @@ Outcome run_pge(const Scene& scene, const Setting& s, double horizon, const std:
   ScalarKind scalar = ScalarKind::Double;
   if (!s.scalar.empty() && !parse_scalar_kind(s.scalar, scalar))
     throw std::invalid_argument("unknown PGE scalar \"" + s.scalar + "\"");
-  switch (scalar) {
-    case ScalarKind::Float: return run_pge_as<float>(scene, solver, horizon, reference);
-    case ScalarKind::Double: return run_pge_as<double>(scene, solver, horizon, reference);
-    case ScalarKind::LongDouble: return run_pge_as<long double>(scene, solver, horizon, reference);
-    case ScalarKind::QuadPrecision: return run_pge_as<Quad>(scene, solver, horizon, reference);
-  }
-  throw std::logic_error("unhandled scalar");
+  return with_scalar(scalar, [&](auto type) {
+    return run_pge_as<typename decltype(type)::type>(scene, solver, horizon, reference);
+  });
 }
 
 Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference) {
