@@ -6,6 +6,7 @@
 // nearly every access to another body also misses the TLB; in 2 MiB pages the mappings fit.
 // Measured on the gas at 1e5 (2-core Xeon VM): about 5% less time per event.
 // Elsewhere, or if the kernel declines, the memory is ordinary.
+// Also prefetch_line, the one place that asks the processor for a line ahead of its use.
 #pragma once
 
 #include <cstddef>
@@ -35,5 +36,14 @@ template <class U> struct CacheAligned {
   void deallocate(U* p, std::size_t n) { ::operator delete(p, std::align_val_t{alignment(n * sizeof(U))}); }
   template <class V> bool operator==(const CacheAligned<V>&) const { return true; }
 };
+
+// Starts fetching the cache line holding p (a hint; nothing where the compiler has no builtin).
+inline void prefetch_line(const void* p) {
+#if defined(__GNUC__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
 
 }  // namespace pge

@@ -82,13 +82,7 @@ template <class T> class EventHeap {
     for (std::size_t c = first_child(kRoot); c < first_child(kRoot) + kArity && c < heap_.size(); ++c) f(heap_[c].owner);
   }
   // Prefetches body i's contact entry.
-  void prefetch(BodyIndex i) const {
-#if defined(__GNUC__)
-    __builtin_prefetch(&entries_[i]);
-#else
-    (void)i;
-#endif
-  }
+  void prefetch(BodyIndex i) const { prefetch_line(&entries_[i]); }
 
   // Owners of every valid contact whose time is <= bound (children are never earlier than
   // their parent, so the walk stops at the first later node on each branch).

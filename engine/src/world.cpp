@@ -369,12 +369,8 @@ template <class T> struct World<T>::Impl {
   }
   // The two cache lines of a Body that a prediction of two circles reads (see Body).
   static void prefetch_hot(const Body& b) {
-#if defined(__GNUC__)
-    __builtin_prefetch(&b);
-    __builtin_prefetch(reinterpret_cast<const char*>(&b) + 64);
-#else
-    (void)b;
-#endif
+    prefetch_line(&b);
+    prefetch_line(reinterpret_cast<const char*>(&b) + 64);
   }
 
   void next_scan() {
