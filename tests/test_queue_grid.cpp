@@ -5,9 +5,12 @@
 //     contact's and the crossing's times; a crossing before a contact at equal times; contacts
 //     by Scheduled::key_less; then owner); every 97 updates a copy emptied from the top yields
 //     every scheduled body in that order, and visit_up_to reports exactly the valid contacts
-//     at or before the bound. Times are drawn from a few values so that ties are common.
+//     at or before the bound, and visit_next reports the root's children with their contacts'
+//     partners, the model's second body among them. Times are drawn from a few values so that
+//     ties are common.
 //   - CellGrid: after inserts and removes (cells fuller than their inline slots included),
-//     visit_around reports the same bodies as a list per cell would.
+//     visit_around reports the same bodies, each with whether it was inserted as shared (a
+//     fixed body in several cells), as a list per cell would.
 #include "broad_phase.hpp"
 #include "event_heap.hpp"
 
@@ -16,8 +19,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <random>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace pge {
@@ -86,6 +91,20 @@ TEST(EventHeap, TopAndVisitMatchAScanUnderRandomUpdates) {
     ASSERT_EQ(heap.top_index(), best.owner) << "step " << step;
     ASSERT_EQ(heap.top_time(), best.time);
     ASSERT_EQ(heap.top_is_crossing(), best.crossing_first == 0 && best.time != kInf);
+    // visit_next: the root's children, each with its contact's partner as the entry holds it
+    // (none when invalid), and among them the body the model orders second.
+    std::vector<std::pair<BodyIndex, BodyIndex>> next;
+    heap.visit_next([&](BodyIndex owner, BodyIndex partner) { next.emplace_back(owner, partner); });
+    ASSERT_EQ(next.size(), std::min<std::size_t>(4, members.size() - 1));
+    for (const auto& [owner, partner] : next)
+      ASSERT_EQ(partner, contact[owner].valid() ? contact[owner].partner : kNoBody) << "step " << step << ", body " << owner;
+    std::optional<Key> second;
+    for (BodyIndex m : members) {
+      const Key k = key_of(contact[m], crossing[m], m);
+      if (m != best.owner && (!second || key_less(k, *second))) second = k;
+    }
+    ASSERT_TRUE(std::any_of(next.begin(), next.end(), [&](const auto& e) { return e.first == second->owner; }))
+        << "step " << step << ": the second event's body " << second->owner << " is not a child of the root";
     if (step % 97 == 0) {
       // The whole order, not only the top: a copy emptied from the top (each taken body's
       // events set to none) yields the bodies with something scheduled in the model's order.
@@ -115,33 +134,40 @@ TEST(CellGrid, VisitsWhatAListPerCellHolds) {
   CellGrid grid;
   const std::uint32_t nx = 6, ny = 5;
   grid.configure(0, 0, 1, 0.1, nx, ny);
-  std::vector<std::vector<BodyIndex>> model(nx * ny);
-  BodyIndex next = 0;
+  using Entry = std::pair<BodyIndex, bool>;  // a body and whether it was inserted as shared
+  std::vector<std::vector<Entry>> model(nx * ny);
+  BodyIndex next = 0, next_shared = 999000;  // shared ones near kMaxBodies, never removed
   for (int step = 0; step < 5000; ++step) {
     // Cells 0 and 7 take many bodies (past the inline slots and back), the rest a few.
     const std::uint32_t c = g() % 3 == 0 ? (g() % 2 ? 0u : 7u) : static_cast<std::uint32_t>(g() % (nx * ny));
-    if (g() % 2 == 0 || model[c].empty()) {
+    if (g() % 10 == 0) {
+      grid.insert(c, next_shared, /*shared=*/true);
+      model[c].emplace_back(next_shared++, true);
+    } else if (g() % 2 == 0 || model[c].empty()) {
       grid.insert(c, next);
-      model[c].push_back(next++);
+      model[c].emplace_back(next++, false);
     } else {
       const std::size_t k = g() % model[c].size();
-      grid.remove(c, model[c][k]);
-      model[c].erase(model[c].begin() + static_cast<std::ptrdiff_t>(k));
+      if (!model[c][k].second) {
+        grid.remove(c, model[c][k].first);
+        model[c].erase(model[c].begin() + static_cast<std::ptrdiff_t>(k));
+      }
     }
     grid.remove(c, next + 1000);  // a body the cell does not hold: nothing happens
     const std::uint32_t around = static_cast<std::uint32_t>(g() % (nx * ny));
-    std::vector<BodyIndex> seen, want;
-    grid.visit_around(around, [&](BodyIndex b) { seen.push_back(b); });
+    std::vector<Entry> seen, want;
+    grid.visit_around(around, [&](BodyIndex b, bool shared) { seen.emplace_back(b, shared); });
     const int cx = static_cast<int>(around % nx), cy = static_cast<int>(around / nx);
     for (int y = cy - 1; y <= cy + 1; ++y)
       for (int x = cx - 1; x <= cx + 1; ++x)
         if (x >= 0 && y >= 0 && x < static_cast<int>(nx) && y < static_cast<int>(ny))
-          for (BodyIndex b : model[static_cast<std::size_t>(y) * nx + static_cast<std::size_t>(x)]) want.push_back(b);
+          for (const Entry& e : model[static_cast<std::size_t>(y) * nx + static_cast<std::size_t>(x)]) want.push_back(e);
     std::sort(seen.begin(), seen.end());
     std::sort(want.begin(), want.end());
     ASSERT_EQ(seen, want) << "step " << step << ", around cell " << around;
   }
   EXPECT_GT(model[0].size() + model[7].size(), 12u) << "the busy cells spilled past their inline slots";
+  EXPECT_GT(next_shared, 999000u + 100u) << "shared bodies were inserted";
 }
 
 }  // namespace

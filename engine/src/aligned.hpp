@@ -38,8 +38,14 @@ template <class U> struct CacheAligned {
 };
 
 // Starts fetching the cache line holding p (a hint; nothing where the compiler has no builtin).
+// On x86-64 an asm statement: GCC treats __builtin_prefetch as free of side effects, so a loop
+// that only prefetches (visit_next's, prefetch_around's) is deleted as an empty loop under
+// C++'s forward-progress rule (-ffinite-loops): the World<double> of 62d1855 had no prefetch
+// left in step() at all. `volatile` keeps every request where it is written.
 inline void prefetch_line(const void* p) {
-#if defined(__GNUC__)
+#if defined(__GNUC__) && defined(__x86_64__)
+  asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
+#elif defined(__GNUC__)
   __builtin_prefetch(p);
 #else
   (void)p;

@@ -31,6 +31,8 @@
 
 namespace pge {
 
+static_assert(kMaxBodies < (std::size_t{1} << 31), "the grid tags shared bodies' cell entries with bit 31");
+
 template <class T> struct World<T>::Impl {
   // The fields every prediction reads come first, so that a scan over all bodies touches as
   // few cache lines as it can; the shape's outline data and the rest follow.
@@ -46,13 +48,16 @@ template <class T> struct World<T>::Impl {
   };
 
   // Aligned to a cache line, with what every prediction reads first: for double, the motion
-  // fills the first line; the version, the exclusion, what a collision reads (inverse mass,
+  // and the grid cell fill the first line; the version, the exclusion, what a collision reads (inverse mass,
   // restitution, storm count) and the shape's kind, radius and span the second. A prediction of
   // two circles or a collision reads no other line of a body (with 1e5 bodies, the bodies do
   // not fit in cache, and each further line is another miss; visit_cells prefetches both).
   struct alignas(64) Body {
     bool fixed = false;
-    int supports = 0;  // faces in `support` that hold the body
+    std::uint8_t supports = 0;  // faces in `support` that hold the body
+    // With the grid on: a moving body's cell, or kInCells, kOutside or kGlobal (see Impl). Here
+    // rather than in an array of its own, where each event's bodies would cost one more miss.
+    std::uint32_t cell = CellGrid::kGlobal;
     // Motion since t0: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2.
     T t0{};
     Vec2<T> p0, v0, acc;
@@ -100,7 +105,6 @@ template <class T> struct World<T>::Impl {
   static constexpr std::uint32_t kOutside = CellGrid::kGlobal - 2;   // a fixed body no cell reaches
   bool grid_on = false;
   CellGrid grid;
-  std::vector<std::uint32_t> cell;       // per body: its cell (moving), kInCells, kOutside or kGlobal
   std::vector<BodyIndex> globals;        // bodies the grid does not hold
   std::vector<BodyIndex> candidates;     // scratch list of visit_cells
   std::vector<BodyIndex> refine_owners;  // scratch list of refine_near_top
@@ -342,12 +346,12 @@ template <class T> struct World<T>::Impl {
 
   // Calls f(j) for every body j != i that i is predicted against (see the broad phase above).
   template <class F> void for_candidates(BodyIndex i, F f) {
-    if (!grid_on || cell[i] == kGlobal) {
+    if (!grid_on || bodies[i].cell == kGlobal) {
       for (BodyIndex j = 0; j < bodies.size(); ++j)
         if (j != i) f(j);
       return;
     }
-    visit_cells(i, cell[i], kGlobal, f);
+    visit_cells(i, bodies[i].cell, kGlobal, f);
     for (BodyIndex j : globals) f(j);
   }
 
@@ -362,10 +366,17 @@ template <class T> struct World<T>::Impl {
     list.clear();
     next_scan();
     const auto keep = [&](BodyIndex j) { list.push_back(j); };
-    grid.visit_around(c, [&](BodyIndex j) { visit_once(i, j, keep); }, except);
+    grid.visit_around(c, [&](BodyIndex j, bool shared) { visit_once(i, j, shared, keep); }, except);
     for (BodyIndex j : list) prefetch_hot(bodies[j]);
     for (BodyIndex j : list) f(j);
     candidates.swap(list);
+  }
+  void prefetch_cells(BodyIndex i) const {
+    if (bodies[i].cell < grid.cell_count()) grid.prefetch_around(bodies[i].cell);
+  }
+  void prefetch_candidates(BodyIndex i) const {
+    if (bodies[i].cell < grid.cell_count())
+      grid.visit_around(bodies[i].cell, [&](BodyIndex j, bool) { prefetch_hot(bodies[j]); });
   }
   // The two cache lines of a Body that a prediction of two circles reads (see Body).
   static void prefetch_hot(const Body& b) {
@@ -379,10 +390,10 @@ template <class T> struct World<T>::Impl {
       scan = 1;
     }
   }
-  // A fixed body registered in several cells of one scan is offered once.
-  template <class F> void visit_once(BodyIndex i, BodyIndex j, F& f) {
+  // A fixed body registered in several cells (`shared`) is offered once per scan.
+  template <class F> void visit_once(BodyIndex i, BodyIndex j, bool shared, F& f) {
     if (j == i) return;
-    if (cell[j] == kInCells) {  // fixed (cell[] is dense; the Body itself would be a miss here)
+    if (shared) {
       if (seen[j] == scan) return;
       seen[j] = scan;
     }
@@ -418,7 +429,7 @@ template <class T> struct World<T>::Impl {
   // global. The grid covers the moving bodies' positions and the fixed bodies of comparable
   // extent, two cells beyond, with at most 16 cells per moving body (larger cells otherwise).
   void setup_grid(BroadPhase mode) {
-    cell.assign(bodies.size(), kGlobal);
+    for (Body& b : bodies) b.cell = kGlobal;
     grid_on = mode == BroadPhase::Grid || (mode == BroadPhase::Auto && moving.size() >= kGridMinMovingBodies);
     if (!grid_on || moving.empty()) {
       grid_on = false;
@@ -474,7 +485,7 @@ template <class T> struct World<T>::Impl {
         make_global(i);
         continue;
       }
-      cell[i] = c;
+      bodies[i].cell = c;
       grid.insert(c, i);
     }
     // A fixed body in every cell its box grown by R + m covers (a moving body in a cell may be
@@ -487,16 +498,16 @@ template <class T> struct World<T>::Impl {
       const double grow = radius + margin;
       std::uint32_t x0, y0, x1, y1;
       if (!grid.cover(b[0] - grow, b[1] - grow, b[2] + grow, b[3] + grow, x0, y0, x1, y1)) {
-        cell[j] = kOutside;
+        bodies[j].cell = kOutside;
         continue;
       }
       if ((static_cast<double>(x1 - x0) + 1) * (static_cast<double>(y1 - y0) + 1) > fixed_cap) {
         make_global(j);
         continue;
       }
-      cell[j] = kInCells;
+      bodies[j].cell = kInCells;
       for (std::uint32_t y = y0; y <= y1; ++y)
-        for (std::uint32_t x = x0; x <= x1; ++x) grid.insert(y * nx + x, j);
+        for (std::uint32_t x = x0; x <= x1; ++x) grid.insert(y * nx + x, j, /*shared=*/true);
     }
   }
 
@@ -519,8 +530,8 @@ template <class T> struct World<T>::Impl {
   // Takes body i out of the grid for good: it becomes every body's candidate and they its.
   // The caller reschedules it (a full scan) if it is moving.
   void make_global(BodyIndex i) {
-    if (!bodies[i].fixed && cell[i] < kOutside) grid.remove(cell[i], i);
-    cell[i] = kGlobal;
+    if (!bodies[i].fixed && bodies[i].cell < kOutside) grid.remove(bodies[i].cell, i);
+    bodies[i].cell = kGlobal;
     globals.push_back(i);
     ++counts.global_bodies;
     if (!bodies[i].fixed) heap.set_crossing(i, EventHeap<T>::never());
@@ -532,11 +543,11 @@ template <class T> struct World<T>::Impl {
   // an eighth of the margin until then: its position evaluated in T and in double, and the
   // crossing's time rounded to T, each off by at most a few ulps of the terms' magnitudes.
   T crossing_time(BodyIndex i, const T& from) {
-    if (cell[i] == kGlobal) return EventHeap<T>::never();
+    if (bodies[i].cell == kGlobal) return EventHeap<T>::never();
     const Body& b = bodies[i];
     const Kinematics<T> k = kinematics(b, from);
     double lo_x, lo_y, hi_x, hi_y;
-    grid.exit_box(cell[i], lo_x, lo_y, hi_x, hi_y);
+    grid.exit_box(bodies[i].cell, lo_x, lo_y, hi_x, hi_y);
     const double px = to_double(k.p.x), py = to_double(k.p.y), vx = to_double(k.v.x), vy = to_double(k.v.y);
     const double ax = to_double(k.a.x), ay = to_double(k.a.y);
     const double limit = to_double(horizon - from);
@@ -567,7 +578,7 @@ template <class T> struct World<T>::Impl {
   // `at`, where they were not neighbours.
   void cross(BodyIndex i, const T& at) {
     ++counts.crossings;
-    const std::uint32_t old = cell[i];
+    const std::uint32_t old = bodies[i].cell;
     const Kinematics<T> k = kinematics(bodies[i], at);
     const std::uint32_t c = grid.cell_of(to_double(k.p.x), to_double(k.p.y));
     if (c == kGlobal || c == old) {  // out of the grid, or not past the exit box: global
@@ -575,15 +586,16 @@ template <class T> struct World<T>::Impl {
       reschedule(i);
       return;
     }
+    grid.prefetch_around(c);  // the old cell, the new one and the new neighbours, at once
     grid.remove(old, i);
     grid.insert(c, i);
-    cell[i] = c;
+    bodies[i].cell = c;
     Scheduled<T> best = heap.at(i);
     auto f = [&](BodyIndex j) { offer(i, j, best); };
     visit_cells(i, c, old, f);
     const T next = crossing_time(i, at);
     heap.set(i, best, next);
-    if (cell[i] == kGlobal) reschedule(i);
+    if (bodies[i].cell == kGlobal) reschedule(i);
   }
 
   // ---- Resting contact (DESIGN.md): a contact state instead of a storm of zero-time events.
@@ -708,7 +720,7 @@ template <class T> struct World<T>::Impl {
     int kept = 0;
     for (int k = 0; k < m.supports; ++k)
       if (keep_mask & (1 << k)) m.support[static_cast<std::size_t>(kept++)] = m.support[static_cast<std::size_t>(k)];
-    m.supports = kept;
+    m.supports = static_cast<std::uint8_t>(kept);
     m.acc = acc;
     if (kept == 2) {
       m.v0 = Vec2<T>{};
@@ -752,7 +764,7 @@ template <class T> struct World<T>::Impl {
       const bool keep = bodies[partner].fixed ? abs(w) <= rest_speed(m, s.body, dot(m.field_acc, s.n)) : w == T(0);
       if (keep) m.support[static_cast<std::size_t>(kept++)] = s;
     }
-    m.supports = kept;
+    m.supports = static_cast<std::uint8_t>(kept);
     if (bodies[partner].fixed && !m.rests_on(partner) && m.supports < 2) {
       using std::sqrt;
       const T len = sqrt(dot(normal_to_m, normal_to_m));
@@ -831,6 +843,12 @@ template <class T> struct World<T>::Impl {
   void collide(const Scheduled<T>& s) {
     Body& a = bodies[s.lo];
     Body& b = bodies[s.hi];
+    // Both bodies' candidates are requested before either is predicted again (their cells'
+    // records were requested when this event reached the top).
+    if (grid_on) {
+      if (!a.fixed) prefetch_candidates(s.lo);
+      if (!b.fixed) prefetch_candidates(s.hi);
+    }
     rebase(a, now);
     rebase(b, now);
     const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
@@ -1039,12 +1057,21 @@ template <class T> bool World<T>::step() {
     const bool crossing_first = !w.heap.empty() && w.heap.top_is_crossing();
     // The events after this one are most likely its children's in the heap: their entries and
     // bodies are fetched while this one is processed (with 1e5 bodies each is a cache miss).
-    w.heap.visit_next([&](BodyIndex j) {
+    w.heap.visit_next([&](BodyIndex j, BodyIndex partner) {
       w.heap.prefetch(j);
       Impl::prefetch_hot(w.bodies[j]);
+      if (partner == kNoBody) return;
+      w.heap.prefetch(partner);
+      Impl::prefetch_hot(w.bodies[partner]);
     });
     const Scheduled<T>* contact = w.heap.empty() || crossing_first ? nullptr : &w.heap.top();
     const bool has_contact = contact && contact->valid();
+    // This event's bodies, fetched one step ago, name their cells: the cells' records are
+    // fetched now, while the event's time is re-derived and its impulse applied.
+    if (has_contact && w.grid_on) {
+      w.prefetch_cells(w.heap.top_index());
+      w.prefetch_cells(contact->partner);
+    }
     const bool has_timer = !w.timers.empty();
     const bool has_frame = w.fps > 0 && w.frame_time(w.next_frame) <= w.horizon;
     // A cell crossing due no later than every other event is bookkeeping: no motion changes
@@ -1187,7 +1214,7 @@ template <class T> std::size_t World<T>::memory_bytes() const {
              s.edge_length.capacity() * sizeof(T);
   }
   bytes += w.moving.capacity() * sizeof(BodyIndex) + w.heap.memory_bytes();
-  bytes += w.cell.capacity() * sizeof(std::uint32_t) + w.seen.capacity() * sizeof(std::uint32_t) +
+  bytes += w.seen.capacity() * sizeof(std::uint32_t) +
            w.globals.capacity() * sizeof(BodyIndex) + w.grid.memory_bytes();
   return bytes;
 }
