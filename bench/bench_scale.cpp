@@ -6,6 +6,8 @@
 //   gas_quartic/N the gas with a distinct small acceleration per disc (every pair's contact is a
 //                 quartic instead of a quadratic): what a scene pays for what it uses
 //   gas_all_pairs/N  the gas without the broad phase (every body predicted against every body)
+//   gas_interleaved  the gas at 1e3 and at 1e5 in one process, timed in alternating batches: the
+//                 ratio of their costs per event with the machine's noise falling on both alike
 // An event is a collision (or a graze); cell crossings are counted apart (crossings_per_event).
 // The world is built and run for a warm-up of 10 events per body before timing, so that every
 // size is measured at the same point of its run (the same simulated time, for the gas: its
@@ -25,9 +27,12 @@
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -61,13 +66,19 @@ double peak_rss_mb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
 }
 
-void run(benchmark::State& state, const Scene& scene, BroadPhase broad_phase) {
+// The world of `scene`, run for the warm-up of 10 events per body.
+std::unique_ptr<World<double>> warm_world(const Scene& scene, BroadPhase broad_phase) {
   pge::WorldOptions options;
   options.broad_phase = broad_phase;
   auto world = std::make_unique<World<double>>(scene, options);
   const std::uint64_t warmup = 10 * scene.bodies.size();
   for (std::uint64_t k = 0; k < warmup && world->step(); ++k) {
   }
+  return world;
+}
+
+void run(benchmark::State& state, const Scene& scene, BroadPhase broad_phase) {
+  auto world = warm_world(scene, broad_phase);
   const auto start = world->counts();
   std::uint64_t events = 0;
   for (auto _ : state) {
@@ -117,6 +128,40 @@ void BM_Polygons(benchmark::State& state) {
   run(state, pge::make_polygons(params(static_cast<std::uint32_t>(state.range(0)))), BroadPhase::Auto);
 }
 
+// The ratio (ns per event at 1e5 over 1e3) as one figure: run one after the other,
+// gas/1000 and gas/100000 meet the machine's noise at different moments, and on a shared
+// machine that moved the ratio by a few tenths from run to run. Here both gases are built and
+// warmed in one process; each iteration runs a batch of 20,000 events on the 1e3 gas, then one
+// on the 1e5 gas, each timed on its own. Counters: the median over the batches of each size's ns
+// per event, and their ratio (ratio_1e5_to_1e3). 40 iterations (40 batches of each size).
+void BM_GasInterleaved(benchmark::State& state) {
+  constexpr std::uint64_t kBatch = 20000;
+  auto small = warm_world(pge::make_gas(params(1000)), BroadPhase::Auto);
+  auto large = warm_world(pge::make_gas(params(100000)), BroadPhase::Auto);
+  std::vector<double> ns_small, ns_large;
+  for (auto _ : state) {
+    for (auto* w : {small.get(), large.get()}) {
+      const auto t0 = std::chrono::steady_clock::now();
+      for (std::uint64_t k = 0; k < kBatch; ++k) {
+        if (!w->step()) {
+          state.SkipWithError("the run ended (horizon, storm or budget) before the benchmark did");
+          return;
+        }
+      }
+      const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+      (w == small.get() ? ns_small : ns_large).push_back(ns / static_cast<double>(kBatch));
+    }
+  }
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  state.counters["ns_per_event_1e3"] = median(ns_small);
+  state.counters["ns_per_event_1e5"] = median(ns_large);
+  state.counters["ratio_1e5_to_1e3"] = median(ns_small) > 0 ? median(ns_large) / median(ns_small) : 0.0;
+  state.counters["peak_rss_mb"] = peak_rss_mb();
+}
+
 // Unit(kMillisecond) per iteration of 10,000 events; ns_per_event is the figure to read.
 BENCHMARK(BM_Gas)->Name("gas")->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GasQuartic)->Name("gas_quartic")->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
@@ -125,6 +170,7 @@ BENCHMARK(BM_Polygons)->Name("polygons")->Arg(1000)->Arg(10000)->Unit(benchmark:
 // Where the grid starts to pay (kGridMinMovingBodies): the small gas both ways.
 BENCHMARK(BM_GasAllPairs)->Name("gas_all_pairs")->Arg(16)->Arg(32)->Arg(64)->Arg(128)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GasGrid)->Name("gas_grid")->Arg(16)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GasInterleaved)->Name("gas_interleaved")->Iterations(40)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

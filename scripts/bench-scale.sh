@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # The figures of the README's "Measured" and "Scale" sections: builds bench_scale and pge, then
-#   1. the three gas sizes in one bench_scale run, 3 repetitions (the cost of an event across N);
+#   1. the three gas sizes in one bench_scale run, 3 repetitions (the cost of an event across N),
+#      then gas_interleaved (the 1e3 and 1e5 gases in alternating batches: the same ratio with
+#      the machine's noise falling on both sizes alike);
 #   2. every bench_scale benchmark in a process of its own (so that peak_rss_mb is that scene's);
 #   3. pge run on fixtures/scenes/basics/gas-1000.json with each solver, 3 times.
-# Writes JSON and text to DIR (default out/scale) and prints a Markdown table of step 2 and the
-# medians of steps 1 and 3. Takes about 6 minutes on an idle 2-core machine; run it idle, since
-# the figures are timings. Exit code: 0, or non-zero if a build or a run failed.
+# Writes JSON and text to DIR (default out/scale) and prints a Markdown table of step 2, the
+# medians of steps 1 and 3 and step 1's interleaved ratio. Takes about 6 minutes on an idle
+# 2-core machine; run it idle, since the figures are timings. Exit code: 0, or non-zero if a
+# build or a run failed.
 # Usage: scripts/bench-scale.sh [--out DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,7 +16,7 @@ out=out/scale
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --out) [[ $# -ge 2 ]] || { echo "bench-scale.sh: --out needs a directory" >&2; exit 2; }; out=$2; shift 2 ;;
-    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench-scale.sh: unknown argument: $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -27,6 +30,8 @@ bench="$build/bench/bench_scale"
 echo "== 1/3: the gas at 1e3, 1e4, 1e5 in one run" >&2
 "$bench" --benchmark_filter='^gas/' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
   --benchmark_out="$out/gas-one-run.json" --benchmark_out_format=json >"$out/gas-one-run.txt"
+"$bench" --benchmark_filter='^gas_interleaved' \
+  --benchmark_out="$out/gas-interleaved.json" --benchmark_out_format=json >"$out/gas-interleaved.txt"
 
 names=(gas/1000 gas/10000 gas/100000 pegs/1000 pegs/10000 polygons/1000 polygons/10000 gas_quartic/1000
        gas_quartic/10000 gas_all_pairs/16 gas_all_pairs/32 gas_all_pairs/64 gas_all_pairs/128 gas_all_pairs/1000
@@ -62,6 +67,12 @@ for b in json.load(open(f"{out}/gas-one-run.json"))["benchmarks"]:
     if b.get("aggregate_name") == "median":
         ns = b["ns_per_event"] * (1e9 if b["ns_per_event"] < 1 else 1)
         print(f"one run, median of 3: {b['run_name']}: {ns:,.0f} ns per event")
+b = json.load(open(f"{out}/gas-interleaved.json"))["benchmarks"][0]
+if b.get("error_occurred"):
+    print(f"gas_interleaved: error: {b.get('error_message')}")
+else:
+    print(f"interleaved batches, medians: {b['ns_per_event_1e3']:,.0f} ns per event at 1e3, "
+          f"{b['ns_per_event_1e5']:,.0f} at 1e5: {b['ratio_1e5_to_1e3']:.2f} times")
 print()
 for solver in ("robust", "fast", "certified"):
     runs = [json.load(open(f"{out}/gas1000-{solver}-{k}.json"))[0] for k in (1, 2, 3)]

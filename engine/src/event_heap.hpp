@@ -82,6 +82,9 @@ template <class T> class EventHeap {
     for (std::size_t c = first_child(kRoot); c < first_child(kRoot) + kArity && c < heap_.size(); ++c)
       f(heap_[c].owner, heap_[c].partner());
   }
+  // Whether sift_down requests the next level's lines ahead (worth it once the heap outgrows the
+  // cache; World turns it on with its other prefetches).
+  void set_prefetching(bool on) { prefetching_ = on; }
   // Prefetches body i's slot (its contact, crossing time and place in the heap: one line).
   void prefetch(BodyIndex i) const { prefetch_line(&slots_[i]); }
 
@@ -215,7 +218,8 @@ template <class T> class EventHeap {
       // The next level's line is one of the children's child groups: all are requested before
       // the comparisons pick one, so that a deep sift waits for about one miss per two levels
       // rather than one per level.
-      for (std::size_t c = first; c < end && first_child(c) < size; ++c) prefetch_line(&heap_[first_child(c)]);
+      if (prefetching_)
+        for (std::size_t c = first; c < end && first_child(c) < size; ++c) prefetch_line(&heap_[first_child(c)]);
       for (std::size_t c = first + 1; c < end; ++c)
         if (less(heap_[c], heap_[child])) child = c;
       if (!less(heap_[child], n)) break;
@@ -237,6 +241,7 @@ template <class T> class EventHeap {
   std::vector<Slot, CacheAligned<Slot>> slots_;
   std::vector<Node, CacheAligned<Node>> heap_ = std::vector<Node, CacheAligned<Node>>(kRoot);
   mutable std::vector<std::size_t> stack_;  // scratch of visit_up_to
+  bool prefetching_ = false;
 };
 
 }  // namespace pge
