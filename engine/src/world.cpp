@@ -49,9 +49,10 @@ template <class T> struct World<T>::Impl {
 
   // Aligned to a cache line, with what every prediction reads first: for double, the motion
   // and the grid cell fill the first line; the version, the exclusion, what a collision reads
-  // (inverse mass, restitution, storm count) and the shape's kind, radius and span the second. A prediction of
-  // two circles or a collision reads no other line of a body (with 1e5 bodies, the bodies do
-  // not fit in cache, and each further line is another miss; visit_cells prefetches both).
+  // (inverse mass, restitution, storm count) and the shape's kind, radius and span the second.
+  // A prediction of two circles or a collision reads no other line of a body (with 1e5 bodies,
+  // the bodies do not fit in cache, and each further line is another miss; visit_cells
+  // prefetches both).
   struct alignas(64) Body {
     bool fixed = false;
     std::uint8_t supports = 0;  // faces in `support` that hold the body
