@@ -5,10 +5,13 @@
 #include "pge/scalar.hpp"
 #include "pge/world.hpp"
 
+#include <boost/math/special_functions/next.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -84,6 +87,87 @@ TYPED_TEST(Solvers, OverlapRule) {
   }
   for (SolverKind s : kSound)
     EXPECT_EQ(earliest_downward_root(s, poly<T>({2, -3, 1}), T(1.5), T(3)).status, RootStatus::None) << solver_name(s);
+}
+
+// The turning-overlap rule. -(t-1)^2 (t-3)(t-5) = -15 + 38t - 32t^2 + 10t^3 - t^4 (expanded by
+// hand; every coefficient exact in every scalar): p(0) = -15 < 0, p'(0) = 38 > 0, and p' =
+// -(t-1)(4t^2 - 26t + 38) vanishes first at t = 1 (4 - 26 + 38 = 16 > 0, so p' changes sign
+// there), where p(1) = 0: the pair touches at its maximum, the rule collides at 1 without the
+// overlap flag. With c0 = -15 - e (e = 2^-49, one ulp of 15 in double) p' is the same and
+// p(1) = -e < 0: a turn at 1 with the overlap flag. With c0 = -15 + e the maximum is +e > 0: the
+// pair separates; with h = t - 1, p = -8 h^2 + 6 h^3 - h^4 + e is 6 2^-78 - 2^-104 > 0 at
+// h0 = 2^-26 and falls there with slope -16 h0 + 18 h0^2 (about -2^-22), so it crosses down at
+// h0 + d with d about 6 2^-78 / 2^-22 = 1.5 2^-54: in (1 + 2^-26, 1 + 2^-26 + 2^-52), nearest
+// double 1 + 2^-26 (d is below half an ulp of 1). Certified's times are exact; robust's within
+// a few ulps (kRobustUlps) where the root is well conditioned. Float has no 15 + 2^-49; the touching case holds there too.
+constexpr double kRobustUlps = 16;
+
+template <class T> double ulps_between(const T& a, const T& b) {
+  using std::abs;
+  return abs(static_cast<double>(boost::math::float_distance(a, b)));
+}
+
+TYPED_TEST(Solvers, TurningOverlapRule) {
+  using T = TypeParam;
+  const double e = std::ldexp(1.0, -49);
+  const auto expect_time = [](SolverKind s, const T& got, const T& want) {
+    if (s == SolverKind::Certified) EXPECT_EQ(got, want);
+    else EXPECT_LE(ulps_between(got, want), kRobustUlps) << solver_name(s);
+  };
+  for (SolverKind s : kSound) {
+    const RootOutcome<T> touch = earliest_downward_root(s, poly<T>({-15, 38, -32, 10, -1}), T(0), T(2));
+    ASSERT_EQ(touch.status, RootStatus::Root) << solver_name(s);
+    expect_time(s, touch.t, T(1));
+    EXPECT_FALSE(touch.at_start_overlap) << solver_name(s);
+  }
+  if constexpr (std::numeric_limits<T>::digits >= 53) {
+    const T h0 = T(std::ldexp(1.0, -26));
+    for (SolverKind s : kSound) {
+      const RootOutcome<T> turn = earliest_downward_root(s, poly<T>({-15 - e, 38, -32, 10, -1}), T(0), T(2));
+      ASSERT_EQ(turn.status, RootStatus::Root) << solver_name(s);
+      expect_time(s, turn.t, T(1));
+      EXPECT_TRUE(turn.at_start_overlap) << solver_name(s);
+      const RootOutcome<T> apart = earliest_downward_root(s, poly<T>({-15 + e, 38, -32, 10, -1}), T(0), T(2));
+      ASSERT_EQ(apart.status, RootStatus::Root) << solver_name(s);
+      EXPECT_FALSE(apart.at_start_overlap) << solver_name(s);
+      if (s == SolverKind::Certified) {
+        EXPECT_GE(apart.t, T(1) + h0);
+        EXPECT_LE(apart.t, T(1) + h0 + T(std::ldexp(1.0, -52)));
+        if constexpr (std::is_same_v<T, double>) {
+          EXPECT_EQ(apart.t, 1.0 + std::ldexp(1.0, -26));
+        }
+      } else {
+        // A root this close to a double root is ill-conditioned (rounding of p moves it by
+        // about u 15 / 2^-22); robust must find this crossing, not the turn at 1.
+        EXPECT_LT(detail::abs_of(apart.t - (T(1) + h0)), h0 / T(4)) << solver_name(s);
+      }
+    }
+  }
+}
+
+// The case that found the rule deciding in floating point: p = -(t-1)(t-1-2^-30)(t-3)(t-5),
+// coefficients expanded exactly in double (as hex below). p(0) < 0 and rising; with h = t - 1,
+// p = -h (h - 2^-30)(h - 2)(h - 4) is 2^-62 (2 - 2^-31)(4 - 2^-31), about 8 2^-62 > 0, at
+// h = 2^-31 between its first two roots: the pair separates for an instant before its maximum,
+// so the earliest downward root is the simple root 1 + 2^-30, exact in double and wider
+// scalars. fast may still take the turn (the baseline).
+TYPED_TEST(Solvers, TurningOverlapNearDoubleRoot) {
+  using T = TypeParam;
+  if constexpr (std::numeric_limits<T>::digits >= 53) {
+    const Poly<T> p = poly<T>({-0x1.e000000780000p+3, 0x1.30000002e0000p+5, -0x1.0000000120000p+5,
+                               0x1.4000000080000p+3, -0x1.0000000000000p+0});
+    const T root = T(1) + T(std::ldexp(1.0, -30));
+    for (SolverKind s : kSound) {
+      const RootOutcome<T> r = earliest_downward_root(s, p, T(0), T(10));
+      ASSERT_EQ(r.status, RootStatus::Root) << solver_name(s);
+      EXPECT_FALSE(r.at_start_overlap) << solver_name(s);
+      if (s == SolverKind::Certified || std::is_same_v<T, double>) {
+        EXPECT_EQ(r.t, root) << solver_name(s);
+      } else {  // robust in wider scalars: the root, not the turn 2^-31 before it (ill-conditioned)
+        EXPECT_LT(detail::abs_of(r.t - root), T(std::ldexp(1.0, -33))) << solver_name(s);
+      }
+    }
+  }
 }
 
 // -(t-1)(t-2)(t-3) = 6 - 11t + 6t^2 - t^3: p(0) = 6, down at 1, up at 2, down at 3. The visitor

@@ -5,6 +5,8 @@
 
 #include "pge/roots.hpp"
 
+#include <boost/math/special_functions/next.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -81,6 +83,45 @@ inline std::vector<Case> random_cases(std::uint64_t seed, std::size_t count, boo
   std::vector<Case> out;
   out.reserve(count);
   for (std::size_t i = 0; i < count; ++i) out.push_back(random_collision_case(rng, quartic));
+  return out;
+}
+
+// The turning family: p(0) < 0 and rising, with its first local maximum within a few ulps of
+// zero, above or below, so that the turning-overlap rule (pge/roots.hpp) hangs on the sign of p
+// there. p is -A (t - m)^2, A (t - m)^2 (t - c) or -A (t - m)^2 (t - c)(t - d) (m < c < d), whose
+// maximum at m is 0, expanded in T (so the maximum moves by the coefficients' rounding) and then
+// nudged by k in [-8, 8] ulps of its constant term. Time scales 1e-3 to 1e3, amplitudes 1e-6 to
+// 1e6; the window [0, hi] reaches past m, sometimes past the later roots. In T's own precision,
+// so that every scalar meets maxima within its own ulps.
+template <class T> struct TurningCase {
+  Poly<T> p;
+  T lo{0}, hi{1};
+};
+
+template <class T> TurningCase<T> turning_case(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto log_uniform = [&](double lo_exp, double hi_exp) { return std::pow(10.0, lo_exp + (hi_exp - lo_exp) * unit(rng)); };
+  const double scale = log_uniform(-3, 3);
+  const T m = T(scale * (0.1 + 0.9 * unit(rng)));
+  const T c = m + T(scale * (0.5 + 2.5 * unit(rng)));
+  const T d = c + T(scale * (0.5 + 2.5 * unit(rng)));
+  const T a = T(log_uniform(-6, 6));
+  const int degree = 2 + static_cast<int>(unit(rng) * 3.0);
+  // (t - m)^2 = m^2 - 2 m t + t^2, times the other factors, in T.
+  std::array<T, 5> q{m * m, T(-2) * m, T(1), T(0), T(0)};
+  const auto times_root = [&](const T& r) {  // q *= (t - r)
+    for (int k = 4; k >= 0; --k) q[k] = (k > 0 ? q[k - 1] : T(0)) - r * q[k];
+  };
+  if (degree >= 3) times_root(c);
+  if (degree >= 4) times_root(d);
+  const T sign = degree == 3 ? T(1) : T(-1);  // negative around m: the maximum is 0
+  TurningCase<T> out;
+  out.p.degree = degree;
+  for (int k = 0; k <= degree; ++k) out.p.c[k] = sign * a * q[k];
+  const int nudge = static_cast<int>(unit(rng) * 17.0) - 8;
+  for (int i = 0; i < (nudge < 0 ? -nudge : nudge); ++i)
+    out.p.c[0] = nudge > 0 ? boost::math::float_next(out.p.c[0]) : boost::math::float_prior(out.p.c[0]);
+  out.hi = unit(rng) < 0.5 ? T(m * T(1.0 + unit(rng))) : T(d * T(1.0 + unit(rng)));
   return out;
 }
 

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace pge::reference {
@@ -90,6 +91,9 @@ struct ExactRoot {
   Rational value;      // when rational
   Rational low, high;  // otherwise
   int after = 0;
+  // The integer polynomial whose root this is, when it is not p's own (the turning-overlap
+  // rule's root of p'); empty otherwise.
+  std::vector<CGAL::Gmpz> of;
 };
 
 // The exact answer for one polynomial: its downward roots in [lo, hi] by the definition in
@@ -111,6 +115,60 @@ inline int sign_at(const std::vector<CGAL::Gmpz>& c, const Rational& x) {
     r = r * n + c[k] * dpow;
   }
   return r < 0 ? -1 : (r > 0 ? 1 : 0);
+}
+
+// The roots of an integer polynomial in [lo, hi] with the sign it has just after each (from the
+// first derivative that does not vanish there, as CGAL's multiplicity says).
+struct SignedRoot {
+  Algebraic root;
+  int multiplicity = 0;
+  int after = 0;
+};
+inline std::vector<SignedRoot> roots_in(const Polynomial& poly, const Rational& lo, const Rational& hi) {
+  Kernel kernel;
+  std::vector<std::pair<Algebraic, Kernel::Multiplicity_type>> roots;
+  kernel.solve_1_object()(poly, std::back_inserter(roots));
+  const auto compare = kernel.compare_1_object();
+  const auto sign_at_root = kernel.sign_at_1_object();
+  std::vector<SignedRoot> out;
+  for (const auto& [r, multiplicity] : roots) {
+    if (compare(r, lo) == CGAL::SMALLER || compare(r, hi) == CGAL::LARGER) continue;
+    Polynomial d = poly;
+    for (int k = 0; k < static_cast<int>(multiplicity); ++k) d = CGAL::differentiate(d);
+    out.push_back({r, static_cast<int>(multiplicity), static_cast<int>(sign_at_root(d, r))});
+  }
+  return out;
+}
+
+// The turning-overlap rule of pge/roots.hpp, from its definition: p(lo) < 0 and p rising after
+// lo; r the first root of p' in (lo, hi] where p' goes from positive to negative (at hi: positive
+// before it); if p(r) <= 0 (CGAL's exact sign at the algebraic r), r is a downward root with the
+// overlap flag p(r) < 0.
+inline std::optional<ExactRoot> turning_root(const Polynomial& poly, const Rational& lo, const Rational& hi) {
+  if (CGAL::degree(poly) < 2) return std::nullopt;
+  const Polynomial slope = CGAL::differentiate(poly);
+  Kernel kernel;
+  const auto compare = kernel.compare_1_object();
+  for (const SignedRoot& r : roots_in(slope, lo, hi)) {
+    if (compare(r.root, lo) == CGAL::EQUAL) continue;
+    const bool at_hi = compare(r.root, hi) == CGAL::EQUAL;
+    const int before = r.multiplicity % 2 == 0 ? r.after : -r.after;
+    if (!(before > 0 && (r.after < 0 || at_hi))) continue;
+    const int at_max = static_cast<int>(kernel.sign_at_1_object()(poly, r.root));
+    if (at_max > 0) return std::nullopt;
+    ExactRoot root;
+    root.overlap = at_max < 0;
+    root.low = r.root.low();
+    root.high = r.root.high();
+    if (at_hi) {
+      root.rational = true;
+      root.value = hi;
+    }
+    root.after = r.after;
+    for (int k = 0; k <= CGAL::degree(slope); ++k) root.of.push_back(slope[k]);
+    return root;
+  }
+  return std::nullopt;
 }
 
 template <class T> Solved solve(const Poly<T>& p, const T& lo_t, const T& hi_t, StartRule rule) {
@@ -135,14 +193,14 @@ template <class T> Solved solve(const Poly<T>& p, const T& lo_t, const T& hi_t, 
     out.push_back(r);
   }
   if (!(lo < hi)) return solved;
+  if (rule == StartRule::OverlapCollides && s_lo < 0 && after > 0)
+    if (const std::optional<ExactRoot> turn = turning_root(poly, lo, hi)) out.push_back(*turn);
 
   Kernel kernel;
-  std::vector<std::pair<Algebraic, Kernel::Multiplicity_type>> roots;
-  kernel.solve_1_object()(poly, std::back_inserter(roots));
   const auto compare = kernel.compare_1_object();
-  const auto sign_at_root = kernel.sign_at_1_object();
-  for (const auto& [r, multiplicity] : roots) {
-    if (compare(r, lo) == CGAL::SMALLER || compare(r, hi) == CGAL::LARGER) continue;
+  for (const SignedRoot& sr : roots_in(poly, lo, hi)) {
+    const Algebraic& r = sr.root;
+    const int multiplicity = sr.multiplicity;
     ExactRoot root;
     root.low = r.low();
     root.high = r.high();
@@ -155,9 +213,7 @@ template <class T> Solved solve(const Poly<T>& p, const T& lo_t, const T& hi_t, 
       solved.other_roots.push_back(root);
       continue;
     }
-    Polynomial d = poly;
-    for (int k = 0; k < static_cast<int>(multiplicity); ++k) d = CGAL::differentiate(d);
-    root.after = static_cast<int>(sign_at_root(d, r));
+    root.after = sr.after;
     const int before = multiplicity % 2 == 0 ? root.after : -root.after;
     if (before > 0 && (root.after < 0 || at_hi)) out.push_back(root);
     else solved.other_roots.push_back(root);
@@ -167,11 +223,15 @@ template <class T> Solved solve(const Poly<T>& p, const T& lo_t, const T& hi_t, 
 
 // Compares the root with a rational x: -1 if root < x, 0 if equal, 1 if root > x. Needs odd
 // multiplicity (a sign change), which every downward root that is not rational has.
+inline const std::vector<CGAL::Gmpz>& poly_of(const Solved& s, const ExactRoot& root) {
+  return root.of.empty() ? s.poly : root.of;
+}
+
 inline int compare(const Solved& s, const ExactRoot& root, const Rational& x) {
   if (root.rational) return root.value < x ? -1 : (root.value > x ? 1 : 0);
   if (x < root.low) return 1;
   if (x > root.high) return -1;
-  const int sx = sign_at(s.poly, x);
+  const int sx = sign_at(poly_of(s, root), x);
   if (sx == 0) return 0;
   return sx == root.after ? -1 : 1;  // p at x has the sign it has right of the root: x is right
 }
@@ -219,9 +279,9 @@ template <class T> T guess(const Solved& s, const ExactRoot& root) {
   if (!(a < b)) return a;
   // The coefficients over the largest one, so that none overflows T.
   CGAL::Gmpz largest(0);
-  for (const CGAL::Gmpz& k : s.poly) largest = std::max(largest, k < 0 ? CGAL::Gmpz(-k) : k);
+  for (const CGAL::Gmpz& k : poly_of(s, root)) largest = std::max(largest, k < 0 ? CGAL::Gmpz(-k) : k);
   std::vector<T> c;
-  for (const CGAL::Gmpz& k : s.poly) c.push_back(approximate<T>(Rational(k, largest)));
+  for (const CGAL::Gmpz& k : poly_of(s, root)) c.push_back(approximate<T>(Rational(k, largest)));
   T x = a + (b - a) / T(2);
   for (int it = 0; it < 60; ++it) {
     T v = c.back(), dv(0);

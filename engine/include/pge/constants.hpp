@@ -98,6 +98,15 @@ inline constexpr double kBoundingSlackRelative = 0x1p-20;
 // (113-bit significand from any starting bracket within the exponent range of double).
 inline constexpr int kMaxRootIterations = 400;
 
+// The turning-overlap rule in the robust solver (pge/roots.hpp): how far, in ulps of the turning
+// time, robust's turning point (a root of p' from T coefficients) may lie from the exact local
+// maximum of p. A negative p there must exceed what that distance can hide (|p'| d + |p''| d^2
+// with d this many ulps) as well as p's rounding; anything closer is handed to the certified
+// solver, which decides it exactly. Robust's well-conditioned roots are within a few ulps (the
+// accuracy suite's random polynomials: at most 26 in double), so 64 leaves room; larger only
+// sends more turns to certified (slower, never wrong), smaller lets robust's own error decide.
+inline constexpr double kTurnErrorUlps = 64;
+
 }  // namespace pge
 
 // Robust solver, relative degree reduction: a leading term c_d t^d is dropped when, for some

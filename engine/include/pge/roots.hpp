@@ -72,68 +72,79 @@ namespace pge {
 // Precisely (what every solver computes, and the tests' exact referee checks):
 //   at lo: p goes negative just after lo, and p(lo) = 0, or p(lo) < 0 under OverlapCollides;
 //   at t in (lo, hi): p(t) = 0, p > 0 just before t and p < 0 just after t;
-//   at hi (> lo): p(hi) = 0 and p > 0 just before hi (what follows hi is beyond the horizon).
+//   at hi (> lo): p(hi) = 0 and p > 0 just before hi (what follows hi is beyond the horizon);
+//   the turning-overlap rule, under OverlapCollides: p(lo) < 0 and p rising just after lo (so
+//   not the rule at lo), with r the first downward root of p' in (lo, hi] (p's first local
+//   maximum): if p(r) <= 0, r, with the overlap flag when p(r) < 0. A pair left overlapping by
+//   round-off and pressed back together by its relative acceleration collides where it turns:
+//   without this p never crosses zero from above and the bodies sink into each other unchecked
+//   (fixtures/regressions/overlap-then-pressed-back-in.json). Every root after it lies past r.
 // So a touch from below (p <= 0 around a double root) is not a root either: it never separates.
-// The turning-overlap rule below is added on top of these by every solver alike; its turning
-// point comes from the robust solver (not certified), and tests/tools/solver_reference.hpp does
-// not model it.
-// Contact code calls this, so that every contact category works with every solver.
+// Certified decides every part of this exactly (roots_certified.hpp, roots_exact.hpp). Robust
+// and fast apply the turning rule below around their own walks; robust hands a turn whose sign
+// is within rounding to certified, so that a wrong sign (a missed or invented collision) cannot
+// come from it. Contact code calls this, so that every contact category works with every solver.
 namespace detail {
-// The overlap rule, continued past lo (the same for every solver): a pair overlapping or
-// touching at lo and receding (p(lo) <= 0, not decreasing) that turns to approach again before
-// it is apart (a pair left overlapping by round-off and pressed back together by its relative
-// acceleration) collides where it turns: at the first local maximum of p, if p is not positive
-// there. Without this p never crosses zero from above and the bodies sink into each other
-// unchecked (fixtures/regressions/overlap-then-pressed-back-in.json). Returns true if `visit`
-// stopped the search; sets `after` to the turning point when there is one.
+enum class Turning : std::uint8_t { None, Turned, Stopped, Doubt };
+
+// The turning-overlap rule in T for fast and robust: Stopped if `visit` stopped the search at the
+// turn, Turned (with `after` the turning point) if it declined it, None if the rule does not
+// apply; Doubt (only when `guarded`, robust's) if the sign of p at the turn is within rounding
+// (a p(lo) within rounding of zero does not end the search when guarded: the turn decides).
 template <class T, class Visit>
-bool visit_turning_overlap(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Visit& visit, T& after,
-                           bool& turned) {
-  turned = false;
-  if (rule != StartRule::OverlapCollides || !(lo < hi)) return false;
-  const T p_lo = p(lo);
-  if (p_lo > T(0) || sign_just_after(p.derivative(), lo) < 0) return false;
+Turning visit_turning_overlap(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Visit& visit, T& after,
+                              bool guarded) {
+  if (rule != StartRule::OverlapCollides || !(lo < hi)) return Turning::None;
+  // Apart at lo: p(lo) > 0, or (guarded) certainly so, by its error bound.
+  const Evaluation<T> at_lo = guarded ? evaluate_with_bound(p, lo) : Evaluation<T>{p(lo), T(0)};
+  if (at_lo.value > at_lo.bound) return Turning::None;
+  const Poly<T> d1 = p.derivative();
+  if (sign_just_after(d1, lo) < 0) return Turning::None;
   // The first local maximum: where p' first crosses zero going down.
-  const RootOutcome<T> turn = [&] {
-    RootOutcome<T> out;
-    robust_visit_downward_roots(p.derivative(), lo, hi, StartRule::CrossingsOnly, [&](const T& t, bool) {
-      out.status = RootStatus::Root;
-      out.t = t;
-      return true;
-    });
-    return out;
-  }();
-  if (turn.status != RootStatus::Root || turn.t <= lo) return false;
-  const T p_turn = p(turn.t);
-  if (p_turn > T(0)) return false;  // apart again before turning: an ordinary crossing follows
-  turned = true;
-  after = turn.t;
-  return visit(turn.t, p_turn < T(0));
+  bool found = false;
+  T turn{};
+  robust_visit_downward_roots(d1, lo, hi, StartRule::CrossingsOnly, [&](const T& t, bool) {
+    found = true;
+    turn = t;
+    return true;
+  });
+  if (!found || turn <= lo) return Turning::None;
+  const T p_turn = p(turn);
+  if (guarded) {
+    // p(turn) <= p(r) near the true maximum r, so a value certainly positive decides; a negative
+    // one must also clear what the turn's own error (kTurnErrorUlps) can hide: |p'| d + |p''| d^2.
+    const Evaluation<T> e = evaluate_with_bound(p, turn);
+    const T d = T(kTurnErrorUlps) * std::numeric_limits<T>::epsilon() * abs_of(turn);
+    const T hidden = e.bound + abs_of(d1(turn)) * d + abs_of(d1.derivative()(turn)) * d * d;
+    const bool positive = e.value > e.bound, negative = e.value < -hidden;
+    if (!positive && !negative) return Turning::Doubt;
+    if (positive) return Turning::None;
+  } else if (p_turn > T(0)) {
+    return Turning::None;  // apart again before turning: an ordinary crossing follows
+  }
+  after = turn;
+  return visit(turn, p_turn < T(0)) ? Turning::Stopped : Turning::Turned;
 }
 }  // namespace detail
 
 template <class T, class Visit>
 bool visit_downward_roots(SolverKind solver, const Poly<T>& p, const T& lo, const T& hi, StartRule rule,
                           Visit&& visit) {
+  if (solver == SolverKind::Certified) return certified_visit_downward_roots(p, lo, hi, rule, visit);
   T after{};
-  bool turned = false;
-  if (detail::visit_turning_overlap(p, lo, hi, rule, visit, after, turned)) return true;
-  if (turned) {
-    // p stays non-positive and decreasing after the turn until it has risen again, so every
-    // later downward root lies beyond it: continue from there, as crossings only.
-    auto later = [&](const T& t, bool overlap) { return t > after && visit(t, overlap); };
-    switch (solver) {
-      case SolverKind::Fast: return fast_visit_downward_roots(p, after, hi, StartRule::CrossingsOnly, later);
-      case SolverKind::Certified: return certified_visit_downward_roots(p, after, hi, StartRule::CrossingsOnly, later);
-      case SolverKind::Robust: break;
+  switch (detail::visit_turning_overlap(p, lo, hi, rule, visit, after, solver == SolverKind::Robust)) {
+    case detail::Turning::Stopped: return true;
+    case detail::Turning::Doubt: return certified_visit_downward_roots(p, lo, hi, rule, visit);
+    case detail::Turning::Turned: {
+      // p stays non-positive and decreasing after the turn until it has risen again, so every
+      // later downward root lies beyond it: continue from there, as crossings only.
+      auto later = [&](const T& t, bool overlap) { return t > after && visit(t, overlap); };
+      if (solver == SolverKind::Fast) return fast_visit_downward_roots(p, after, hi, StartRule::CrossingsOnly, later);
+      return robust_visit_downward_roots(p, after, hi, StartRule::CrossingsOnly, later);
     }
-    return robust_visit_downward_roots(p, after, hi, StartRule::CrossingsOnly, later);
+    case detail::Turning::None: break;
   }
-  switch (solver) {
-    case SolverKind::Fast: return fast_visit_downward_roots(p, lo, hi, rule, visit);
-    case SolverKind::Certified: return certified_visit_downward_roots(p, lo, hi, rule, visit);
-    case SolverKind::Robust: break;
-  }
+  if (solver == SolverKind::Fast) return fast_visit_downward_roots(p, lo, hi, rule, visit);
   return robust_visit_downward_roots(p, lo, hi, rule, visit);
 }
 

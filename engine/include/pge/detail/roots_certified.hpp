@@ -68,12 +68,12 @@ template <class T> class Certifier {
     return exact::sign_at(exact_poly(k), exact::to_dyadic(x));
   }
 
-  // The sign of p at the exact midpoint of a and b.
-  int sign_at_midpoint(const T& a, const T& b) {
+  // The sign of p^(k) at the exact midpoint of a and b.
+  int sign_at_midpoint(const T& a, const T& b, int k = 0) {
     using W = typename Wider<T>::type;
-    const int s = wide_sign(0, (W(a) + W(b)) / W(2));
+    const int s = wide_sign(k, (W(a) + W(b)) / W(2));
     if (s != 2) return s;
-    return exact::sign_at(exact_poly(0), exact::midpoint(exact::to_dyadic(a), exact::to_dyadic(b)));
+    return exact::sign_at(exact_poly(k), exact::midpoint(exact::to_dyadic(a), exact::to_dyadic(b)));
   }
 
   // --- the structure (see the file comment)
@@ -231,9 +231,9 @@ template <class T> class Certifier {
     return Verdict::Done;
   }
 
-  // The T nearest the single root of p in (a, b) (adjacent), p(a) of sign s_a.
-  T nearest(const T& a, const T& b, int s_a) {
-    const int s = sign_at_midpoint(a, b);
+  // The T nearest the single root of p^(k) in (a, b) (adjacent), p^(k)(a) of sign s_a.
+  T nearest(const T& a, const T& b, int s_a, int k = 0) {
+    const int s = sign_at_midpoint(a, b, k);
     if (s == 0) {  // a tie: the one with the even significand
       using std::frexp;
       using std::ldexp;
@@ -326,6 +326,11 @@ bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& h
   }
   // Walk the pieces from lo, deciding lazily: the extremum of p in a piece is computed only when
   // it could hold a downward root, and the walk stops at the first root the visitor accepts.
+  // The turning-overlap rule (pge/roots.hpp) is part of the walk: overlapping at lo and rising,
+  // p rises to its first local maximum, where the pair collides if p is not positive there; that
+  // maximum is the extremum of the first piece where p' changes sign downwards (p' > 0 on the
+  // pieces before it, which are certified monotone), certified like any other decision.
+  bool before_first_max = rule == StartRule::OverlapCollides && s_lo < 0 && after_lo > 0;
   int s_u = s_lo != 0 ? s_lo : after_lo;  // the sign of p just after u
   int slope_u = cert.sign(1, lo);
   if (slope_u == 0) return fall_back();
@@ -358,7 +363,12 @@ bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& h
       // on [cb, v], so a positive p(cb) puts it there. Otherwise the root, if any, lies in the
       // adjacent pair itself, where p changes sign at most once.
       const bool in_first = has_min && s_ca < 0, in_last = has_max && s_cb > 0;
-      if (in_first || in_last) {
+      if (before_first_max && s_ca < 0 && s_cb < 0) {
+        // The first maximum, in (ca, cb) where p is negative at both ends: it turns unless p
+        // reaches zero in between, which only exact arithmetic can rule in or out.
+        if (!cert.extremum_clear(0, ca, cb, -1, slope_u)) return fall_back();
+        if (counted(cert.nearest(ca, cb, slope_u, 1), true)) return true;
+      } else if (in_first || in_last) {
         if (cert.nearest_root(in_first ? u : cb, in_first ? ca : v, t) == Certifier::Verdict::Undecided) return fall_back();
         if (counted(t, false)) return true;
       } else if (s_ca > 0 && s_cb < 0) {
@@ -367,6 +377,7 @@ bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& h
         return fall_back();  // a near-double root: is it real?
       }
     }
+    if (has_max) before_first_max = false;
     s_u = s_v;
     slope_u = slope_v;
   }

@@ -274,8 +274,8 @@ template <class T> T round_to_scalar(const Dyadic& x) {
 // --- the exact solver.
 
 // Enumerates the downward roots of p in [lo, hi] exactly (the semantics of
-// visit_downward_roots), each rounded to the nearest T, skipping the first `skip` of them (the
-// ones a caller already visited before falling back here).
+// visit_downward_roots, the turning-overlap rule included), each rounded to the nearest T,
+// skipping the first `skip` of them (the ones a caller already visited before falling back here).
 template <class T> class ExactSolver {
  public:
   ExactSolver(const Poly<T>& p, const T& lo, const T& hi) : p_(to_int_poly(p)), lo_(to_dyadic(lo)), hi_(to_dyadic(hi)) {}
@@ -286,14 +286,60 @@ template <class T> class ExactSolver {
     skip_ = skip;
     if (p_.degree == 0) return false;
     const int s0 = sign_at(p_, lo_);
-    if (sign_just_after(derivative(p_), lo_) < 0 && (s0 == 0 || (s0 < 0 && rule == StartRule::OverlapCollides)))
+    const int rising = sign_just_after(derivative(p_), lo_);
+    if (rising < 0 && (s0 == 0 || (s0 < 0 && rule == StartRule::OverlapCollides)))
       if (emit(visit, round_to_scalar<T>(lo_), s0 < 0)) return true;
     if (compare(lo_, hi_) >= 0) return false;
     chain_ = sturm_chain(p_);
+    if (rule == StartRule::OverlapCollides && s0 < 0 && rising > 0 && turning_overlap(visit)) return true;
     return isolate(visit, lo_, hi_, chain_.variations(lo_), chain_.variations(hi_));
   }
 
+  // The first downward root r of p in (lo, hi] (as StartRule::CrossingsOnly finds it) rounded
+  // to T, and a point `right` with r <= right and p < 0 on (r, right] (`right` = r, `exact`
+  // true, when r is a dyadic number found exactly). False if there is none.
+  bool first_crossing(T& t, Dyadic& right, bool& exact) {
+    if (p_.degree == 0 || compare(lo_, hi_) >= 0) return false;
+    chain_ = sturm_chain(p_);
+    bool found = false;
+    auto take = [&](const T& x, bool) {
+      t = x;
+      found = true;
+      return true;
+    };
+    isolate(take, lo_, hi_, chain_.variations(lo_), chain_.variations(hi_));
+    right = right_;
+    exact = right_exact_;
+    return found;
+  }
+
  private:
+  // The turning-overlap rule of pge/roots.hpp, decided exactly: p < 0 at lo and rising. p rises
+  // strictly up to its first local maximum r (the first downward root of p'; p' >= 0 before it),
+  // so if p(r) <= 0 the pair turns back without ever separating and collides at r. p(r) is
+  // decided without computing r: on (r, right] p falls, so with p(right) < 0 p has 0, 1 or 2
+  // distinct roots in (lo, right] as p(r) is negative, zero (a double root at r) or positive,
+  // and the Sturm chain counts them. Returns true if `visit` stopped the search; the roots that
+  // follow r (p stays non-positive up to r, so there are none before it) are isolate's.
+  template <class Visit> bool turning_overlap(Visit& visit) {
+    ExactSolver slope(derivative(p_), lo_, hi_);
+    T t{};
+    Dyadic right;
+    bool exact = false;
+    if (!slope.first_crossing(t, right, exact)) return false;
+    int at_max = 0;  // the sign of p(r)
+    if (exact) {
+      at_max = sign_at(p_, right);
+    } else {
+      if (sign_at(p_, right) >= 0) return false;  // p(r) > p(right) >= 0: apart before the turn
+      const int roots = chain_.variations(lo_) - chain_.variations(right);
+      at_max = roots == 0 ? -1 : (roots == 1 ? 0 : 1);
+    }
+    if (at_max > 0) return false;  // apart at the maximum: an ordinary crossing follows
+    return emit(visit, t, at_max < 0);
+  }
+
+
   template <class Visit> bool emit(Visit& visit, const T& t, bool overlap) {
     if (skip_ > 0) { --skip_; return false; }
     return visit(t, overlap);
@@ -323,6 +369,8 @@ template <class T> class ExactSolver {
     // Now a < r < b with neither end a root of p: the signs of p at the ends are its signs
     // just before and just after r.
     if (!(sign_at(p_, a) > 0 && sign_at(p_, b) < 0)) return false;
+    right_ = b;
+    right_exact_ = false;
     const int sa = sign_at(q, a);
     for (;;) {
       const T ta = round_to_scalar<T>(a), tb = round_to_scalar<T>(b);
@@ -359,7 +407,11 @@ template <class T> class ExactSolver {
     }
     const int before = order % 2 == 0 ? after : -after;
     const bool at_hi = compare(r, hi_) == 0;
-    if (before > 0 && (at_hi || after < 0)) return emit(visit, round_to_scalar<T>(r), false);
+    if (before > 0 && (at_hi || after < 0)) {
+      right_ = r;
+      right_exact_ = true;
+      return emit(visit, round_to_scalar<T>(r), false);
+    }
     return false;
   }
 
@@ -367,6 +419,8 @@ template <class T> class ExactSolver {
   Dyadic lo_, hi_;
   SturmChain chain_;
   int skip_ = 0;
+  Dyadic right_;  // first_crossing's bracket end: the last root emitted (one_root, exact_root)
+  bool right_exact_ = false;
 };
 
 }  // namespace exact
