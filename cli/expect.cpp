@@ -18,15 +18,12 @@ namespace {
 
 using Json = nlohmann::json;
 
-// Longest excerpt of an offending value quoted in a message (as the scene reader does).
-constexpr std::size_t kMaxQuotedValue = 40;
 // Counts may be written as integral floats (1e6); below 2^64 they convert exactly.
 constexpr double kCountLimit = 18446744073709551616.0;
 
+// Cut as the scene reader cuts (pge::excerpt).
 std::string describe(const Json& value) {
-  std::string text = value.dump(-1, ' ', false, Json::error_handler_t::replace);
-  if (text.size() > kMaxQuotedValue) text = text.substr(0, kMaxQuotedValue) + "...";
-  return text;
+  return excerpt(value.dump(-1, ' ', false, Json::error_handler_t::replace));
 }
 
 std::string quoted_list(std::initializer_list<std::string_view> names) {
@@ -106,7 +103,7 @@ class ExpectParser {
   void allow_keys(const Json& object, const std::string& path, std::initializer_list<std::string_view> known) const {
     for (const auto& [key, value] : object.items())
       if (std::find(known.begin(), known.end(), key) == known.end())
-        fail(path + "." + key, fmt::format("unknown key \"{}\"; known keys are {}", key, quoted_list(known)));
+        fail(path + "." + key, fmt::format("unknown key \"{}\"; known keys are {}", excerpt(key), quoted_list(known)));
   }
   const Json& required(const Json& object, const std::string& path, const char* key) const {
     if (!object.contains(key)) fail(path + "." + key, "missing; it is required");

@@ -546,6 +546,77 @@ TEST(SceneErrors, OverlapAtStart) {
       "twin", "position", "overlaps");
 }
 
+// ---- hostile files (issue 22) -------------------------------------------------------------------
+
+// A message quoting a cut value is still one short line: the value's 80 bytes, "...", and the
+// file, position, body and field around it.
+constexpr std::size_t kShortMessage = 500;
+
+TEST(SceneErrors, DeepNestingIsRefusedBeforeParsing) {
+  // 100,000 levels: closed, the reader crashed (nlohmann's serializer recursing while describing
+  // the value); unclosed, it took minutes and named a 300 KB field.
+  const std::string open(100000, '[');
+  for (const std::string& text : {open + std::string(100000, ']'), open}) {
+    const SceneError e = parse_error(text, "", "", "nested more than 64 levels deep");
+    EXPECT_EQ(e.line(), 1);
+    EXPECT_EQ(e.column(), 65);  // the first bracket past the limit
+    EXPECT_LT(std::string(e.what()).size(), kShortMessage) << e.what();
+  }
+  // 64 levels pass the limit (and fail as what they are); 65 do not.
+  parse_error(std::string(64, '[') + std::string(64, ']'), "", "", "must be an object");
+  parse_error(std::string(65, '[') + std::string(65, ']'), "", "", "nested more than 64");
+}
+
+TEST(SceneErrors, DeepNestingInsideABodyNamesTheBody) {
+  const std::string text =
+      "{\"format\": \"pge-scene/1\",\n\"bodies\": [" + kBall + ",\n" +
+      R"({"id": "deep", "circle": {"radius": )" + std::string(100000, '[');
+  const SceneError e = parse_error(text, "deep", "", "nested more than 64 levels deep");
+  EXPECT_EQ(e.body_index(), 1);
+  EXPECT_EQ(e.line(), 3);
+  EXPECT_EQ(e.field().rfind("circle.radius[0][0]", 0), 0u) << e.field();
+  EXPECT_LT(std::string(e.what()).size(), kShortMessage) << e.what();
+}
+
+TEST(SceneErrors, BracketsInStringsDoNotCount) {
+  // Escaped quotes do not end the string: the brackets after them are still inside it.
+  const std::string name = "\\\"" + std::string(100, '[') + "\\\\\\\"" + std::string(100, '{');
+  const LoadedScene loaded =
+      parse_scene(R"({"format": "pge-scene/1", "name": ")" + name + R"(", "bodies": []})", kOrigin);
+  EXPECT_EQ(loaded.scene.name, "\"" + std::string(100, '[') + "\\\"" + std::string(100, '{'));
+}
+
+TEST(SceneErrors, HugeValuesAreCutInMessages) {
+  const std::string huge(100000, 'k');
+  // 80 bytes and "...": one of them may be the value's opening quote.
+  const std::string cut = std::string(79, 'k') + "...";
+  const auto expect_short = [&](const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_LT(what.size(), kShortMessage) << what.substr(0, 1000);
+    EXPECT_NE(what.find(cut), std::string::npos) << what.substr(0, 1000);
+  };
+  // An unknown key: named in the field and in the reason.
+  const std::string ball = R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, )";
+  expect_short(
+      parse_error(scene_with_body(ball + "\"" + huge + "\": 1}"), "ball", "", "unknown key"));
+  // A huge id, and the same key twice.
+  expect_short(parse_error(scene_with_body(R"({"id": ")" + huge + R"(", "circle": {"radius": 1},
+                                               "mass": 1, "mass": 2})"),
+                           "", "mass", "duplicate key"));
+  expect_short(parse_error(scene_with_body(ball + "\"" + huge + "\": 1, \"" + huge + "\": 2}"),
+                           "ball", "", "duplicate key"));
+  // A string never closed: nlohmann quotes all of it as the token it last read.
+  expect_short(parse_error(scene_with_body(R"({"id": ")" + huge), "", "id", "syntax error"));
+  // A string where a solver's name is expected.
+  expect_short(parse_error(
+      R"({"format": "pge-scene/1", "run": {"solver": ")" + huge + R"("}, "bodies": []})", "",
+      "run.solver", "must be"));
+  // A value already cut before (at 40 bytes), now at 80 like the rest.
+  expect_short(parse_error(
+      scene_with_body(R"({"id": "ball", "circle": {"radius": ")" + huge + R"("}, "mass": 1})"),
+      "ball", "circle.radius", "must be a number"));
+}
+
 TEST(SceneErrors, UnreadableFile) {
   const std::string path = "/nonexistent/dir/scene.json";
   try {

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <string>
 #include <unordered_set>
 
@@ -125,7 +126,8 @@ JsonPath walk_json(std::string_view text, std::size_t limit, const JsonVisitor& 
     if (c == '{' || c == '[') {
       if (!visit_value(i, i + 1)) break;
       frames.push_back({c == '{', c == '[', {}});
-      if (c == '[') path = path + 0;
+      // In place, not `path = path + 0`: a copy per bracket made deep texts quadratic.
+      if (c == '[') path.push_back({"", 0});
       expect_key = c == '{';
     } else if (c == '}' || c == ']') {
       if (!frames.empty()) {
@@ -151,7 +153,7 @@ JsonPath walk_json(std::string_view text, std::size_t limit, const JsonVisitor& 
       if (frame.has_step) path.pop_back();
       std::string key = string_literal(text, i);
       const bool duplicate = !frame.keys.insert(key).second;
-      path = path + std::move(key);
+      path.push_back({std::move(key), -1});
       frame.has_step = true;
       expect_key = false;
       if (!visit(JsonToken{true, duplicate, i, end}, path)) break;
@@ -173,6 +175,20 @@ std::size_t value_end(std::string_view text, std::size_t begin) {
     if (depth <= 0) return i;
   }
   return text.size();
+}
+
+std::size_t nesting_too_deep(std::string_view text, int max_depth) {
+  int depth = 0;
+  for (std::size_t i = skip_space(text, 0); i < text.size();
+       i = skip_space(text, token_end(text, i))) {
+    if (text[i] == '{' || text[i] == '[') {
+      if (++depth > max_depth) return i;
+    } else if (text[i] == '}' || text[i] == ']') {
+      // A stray closing bracket is the parser's to report; never let it hide deeper nesting.
+      depth = std::max(depth - 1, 0);
+    }
+  }
+  return std::string_view::npos;
 }
 
 std::size_t find_value(std::string_view text, const JsonPath& path) {

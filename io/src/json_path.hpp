@@ -54,6 +54,12 @@ JsonPath walk_json(std::string_view text, std::size_t limit, const JsonVisitor& 
 // The offset just past the value starting at `begin` (brackets matched, strings skipped).
 std::size_t value_end(std::string_view text, std::size_t begin);
 
+// The offset of the first '[' or '{' (outside strings) that opens more than `max_depth` nested
+// levels; npos if none does. Linear on any text: the reader calls it before the parser, because
+// nlohmann's serializer (describing a value in a message) recurses once per level and overflowed
+// the stack at 100,000, and the path of an error that deep made a message of 300 KB.
+std::size_t nesting_too_deep(std::string_view text, int max_depth);
+
 // Where the value at `path` starts (the last one, as the parser keeps the last duplicate key);
 // npos if absent.
 std::size_t find_value(std::string_view text, const JsonPath& path);

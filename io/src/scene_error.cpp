@@ -9,9 +9,10 @@ namespace pge {
 namespace {
 
 // JSON string syntax: quotes and control characters in ids and keys stay visible and the
-// message stays on one line.
+// message stays on one line; a long id or field (a huge key, a path 64 levels deep) is cut.
+// The accessors keep the whole value.
 std::string quoted(const std::string& s) {
-  return nlohmann::json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  return nlohmann::json(excerpt(s)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 std::string error_message(const SceneErrorPlace& place, const std::string& reason) {
@@ -32,6 +33,14 @@ std::string error_message(const SceneErrorPlace& place, const std::string& reaso
 }
 
 }  // namespace
+
+std::string excerpt(std::string_view text) {
+  if (text.size() <= kMaxQuoted) return std::string(text);
+  std::size_t cut = kMaxQuoted;
+  // Back to the start of a UTF-8 sequence, so that the cut text stays valid UTF-8.
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+  return std::string(text.substr(0, cut)) + "...";
+}
 
 SceneError::SceneError(SceneErrorPlace place, std::string reason)
     : std::runtime_error(error_message(place, reason)),

@@ -23,15 +23,13 @@ namespace {
 using Json = nlohmann::json;
 
 constexpr std::string_view kFormat = "pge-scene/1";
-// Longest excerpt of an offending value quoted in a message; keeps messages to one short line.
-constexpr std::size_t kMaxQuotedValue = 40;
+// The deepest nesting of [ and { a file may have (documented in fixtures/README.md). A scene
+// needs 6 (the file, "bodies", a body, "polygon", "vertices", a vertex) and an expect block
+// about as many; the limit is far above both and far below what would make a 100,000-deep
+// file slow or its messages huge (see nesting_too_deep).
+constexpr int kMaxDepth = 64;
 // max_events may also be written as an integral float (1e6); below 2^64 it converts exactly.
 constexpr double kMaxEventsLimit = 18446744073709551616.0;
-
-std::string excerpt(std::string text) {
-  if (text.size() > kMaxQuotedValue) text = text.substr(0, kMaxQuotedValue) + "...";
-  return text;
-}
 
 std::string describe(const Json& value) {
   return excerpt(value.dump(-1, ' ', false, Json::error_handler_t::replace));
@@ -64,11 +62,21 @@ bool is_nan_or_infinity(std::string_view word) {
 }
 
 // nlohmann's message without its "[json.exception...] parse error at line L, column C: " prefix;
-// the position is reported our way.
+// the position is reported our way. The token it quotes ("last read: '...'") is cut: for an
+// unclosed string it is the whole rest of the file.
 std::string syntax_reason(const Json::parse_error& error) {
   std::string_view what = error.what();
-  const std::size_t start = what.find("syntax error");
-  return std::string(start == std::string_view::npos ? what : what.substr(start));
+  if (const std::size_t start = what.find("syntax error"); start != std::string_view::npos)
+    what.remove_prefix(start);
+  constexpr std::string_view kLastRead = "last read: '";
+  const std::size_t token = what.find(kLastRead);
+  if (token == std::string_view::npos || what.back() != '\'') return std::string(what);
+  const std::size_t begin = token + kLastRead.size();
+  // What follows the token is nlohmann's own "; expected ..." or the closing quote alone.
+  std::size_t end = what.rfind("'; expected ");
+  if (end == std::string_view::npos || end < begin) end = what.size() - 1;
+  return std::string(what.substr(0, begin)) + excerpt(what.substr(begin, end - begin)) +
+         std::string(what.substr(end));
 }
 
 // A number literal that no double can hold: the parser rejects overflow without saying where,
@@ -80,7 +88,7 @@ std::string number_problem(std::string_view literal) {
   const bool tiny =
       literal.find("e-") != std::string_view::npos || literal.find("E-") != std::string_view::npos;
   return fmt::format(
-      "number {} is out of range for a double ({})", excerpt(std::string(literal)),
+      "number {} is out of range for a double ({})", excerpt(literal),
       tiny ? "it would read as 0; write 0 if that is meant" : "it would overflow to infinity");
 }
 
@@ -158,6 +166,9 @@ class SceneReader {
   // --- text level ----------------------------------------------------------------------------
 
   Json parse_json() const {
+    if (const std::size_t deep = nesting_too_deep(text_, kMaxDepth); deep != std::string_view::npos)
+      fail_at(deep, fmt::format("nested more than {} levels deep in [ and {{ (a scene needs 6)",
+                                kMaxDepth));
     Json root;
     bool overflow = false;
     try {
@@ -184,7 +195,7 @@ class SceneReader {
     std::string reason;
     walk_json(text_, text_.size(), [&](const JsonToken& token, const JsonPath& path) {
       if (token.is_key && token.duplicate_key)
-        reason = fmt::format("duplicate key \"{}\"", path.back().key);
+        reason = fmt::format("duplicate key \"{}\"", excerpt(path.back().key));
       else if (!token.is_key && (text_[token.begin] == '-' ||
                                  std::isdigit(static_cast<unsigned char>(text_[token.begin]))))
         reason = number_problem(text_.substr(token.begin, token.end - token.begin));
@@ -208,8 +219,8 @@ class SceneReader {
                   std::initializer_list<std::string_view> known) const {
     for (const auto& [key, value] : object.items()) {
       if (std::find(known.begin(), known.end(), key) == known.end())
-        fail(path + key,
-             fmt::format("unknown key \"{}\"; known keys are {}", key, quoted_list(known)));
+        fail(path + key, fmt::format("unknown key \"{}\"; known keys are {}", excerpt(key),
+                                     quoted_list(known)));
     }
   }
 
@@ -307,7 +318,8 @@ class SceneReader {
     if (run.contains("solver")) {
       const std::string name = string_at(run["solver"], path + "solver");
       if (!parse_solver_kind(name, out.solver))
-        fail(path + "solver", "must be \"fast\", \"robust\" or \"certified\", got \"" + name + "\"");
+        fail(path + "solver",
+             "must be \"fast\", \"robust\" or \"certified\", got \"" + excerpt(name) + "\"");
     }
     return out;
   }

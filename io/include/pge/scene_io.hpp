@@ -42,6 +42,13 @@ class SceneError : public std::runtime_error {
   std::string reason_;
 };
 
+// Longest excerpt of a value, key, id or field quoted in a scene error (the reader's, and the
+// expect block's in `pge check`): a message stays one readable line whatever the file holds.
+constexpr std::size_t kMaxQuoted = 80;
+// `text` itself if it has at most kMaxQuoted bytes; else its first kMaxQuoted bytes (fewer, to
+// end on a whole UTF-8 character) and "...".
+std::string excerpt(std::string_view text);
+
 struct LoadedScene {
   Scene scene;
   std::string expect_json;  // the "expect" object's text exactly as in the file; "" if absent
