@@ -676,6 +676,11 @@ int gate_command(const GateOptions& o) {
                  results.meta.injected);
       return kExitUsage;
     }
+    // The baseline the gate would refuse (fail closed) is not written either.
+    if (const std::string why = report::unusable_baseline(results); !why.empty()) {
+      fmt::print(stderr, "pge gate: no baseline written: the results: {}\n", why);
+      return kExitBadResults;
+    }
     try {
       report::write_results(o.baseline, results);
     } catch (const report::ReportError& e) {
@@ -707,7 +712,7 @@ int gate_command(const GateOptions& o) {
     fmt::print(stderr, "pge gate: cannot write {} or {}\n", summary, junit);
     return kExitOutput;
   }
-  if (!have_baseline || !results_error.empty()) {
+  if (g.closed) {
     fmt::print(stderr, "pge gate: FAIL (closed): {}\n", g.checks.front().message);
     return kExitBadResults;
   }

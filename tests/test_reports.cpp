@@ -286,6 +286,62 @@ TEST(Gate, FailsClosedOnMissingRowsFailedRunsAndOtherSweeps) {
   injected.meta.injected = "slow";
   EXPECT_TRUE(has_failure(gate(injected, base, GatePolicy{}), "injected"));
   EXPECT_FALSE(unreadable("results: garbage").pass());
+  EXPECT_TRUE(unreadable("results: garbage").closed);
+  EXPECT_FALSE(gate(base, base, GatePolicy{}).closed);
+}
+
+// Issue 22: inputs that read but leave nothing to compare passed ("pass (4 checks)"). Each is
+// now closed (exit 10): one failed check saying why, and nothing compared.
+TEST(Gate, FailsClosedWhenNothingCouldBeCompared) {
+  const Results base = sample();
+  const auto expect_closed = [](const GateResult& g, const std::string& why) {
+    EXPECT_TRUE(g.closed) << why;
+    EXPECT_FALSE(g.pass()) << why;
+    ASSERT_EQ(g.checks.size(), 1u) << why;
+    EXPECT_NE(g.checks[0].message.find(why), std::string::npos) << g.checks[0].message;
+  };
+  Results empty = base;
+  empty.rows.clear();
+  expect_closed(gate(empty, base, GatePolicy{}), "baseline: no rows");
+  expect_closed(gate(base, empty, GatePolicy{}), "results: no rows");
+  Results failed = base;
+  for (Row& r : failed.rows) r.error = "unsupported";
+  expect_closed(gate(failed, base, GatePolicy{}), "baseline: none of its 3 rows can be gated");
+  // Without a calibration time the reference configuration's speed went unchecked: 100x slower passed.
+  Results uncalibrated = base;
+  uncalibrated.meta.calibration_seconds = 0;
+  uncalibrated.rows[0].wall_seconds *= 100;
+  expect_closed(gate(base, uncalibrated, GatePolicy{}), "results: calibration_seconds is 0");
+  uncalibrated.meta.calibration_seconds = std::nan("");
+  expect_closed(gate(base, uncalibrated, GatePolicy{}), "results: calibration_seconds is nan");
+  expect_closed(gate(uncalibrated, base, GatePolicy{}), "baseline: calibration_seconds");
+  // Rows of wall time 0 were left out of the speed checks: all of them, no speed check at all.
+  Results untimed = base;
+  for (Row& r : untimed.rows) r.wall_seconds = 0;
+  expect_closed(gate(base, untimed, GatePolicy{}),
+                "results: row accuracy/basics/head-on/robust/double: wall_seconds is 0");
+  // What `pge gate --update` checks before writing a baseline.
+  EXPECT_NE(unusable_baseline(empty), "");
+  EXPECT_NE(unusable_baseline(failed), "");
+  EXPECT_EQ(unusable_baseline(base), "");
+  EXPECT_EQ(unusable_results(failed), "");  // failed runs in the results are regressions (exit 9)
+  EXPECT_FALSE(gate(base, failed, GatePolicy{}).closed);
+}
+
+TEST(ReportData, RowsMustBeAnArray) {
+  const std::string text = to_json_text(sample());
+  const std::size_t rows = text.find("\"rows\": [");
+  ASSERT_NE(rows, std::string::npos);
+  for (const std::string not_array : {"null", "{}", "3"}) {
+    const std::string bad = text.substr(0, rows) + "\"rows\": " + not_array + "}";
+    try {
+      from_json_text(bad, "r.json");
+      ADD_FAILURE() << "accepted rows " << not_array;
+    } catch (const ReportError& e) {
+      EXPECT_NE(std::string(e.what()).find("\"rows\" is "), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(from_json_text(text.substr(0, rows) + "\"rows\": []}", "r.json").rows.empty());
 }
 
 TEST(Gate, JunitNamesEveryCheckAndEscapesMessages) {

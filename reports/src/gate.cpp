@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <map>
@@ -24,15 +25,51 @@ double scalar_epsilon(const std::string& scalar) {
   return DBL_EPSILON;
 }
 
-GateResult unreadable(const std::string& what) {
+namespace {
+
+GateResult closed(const std::string& name, const std::string& why) {
   GateResult g;
-  g.checks.push_back({"results", "results readable", Status::Fail, what});
+  g.checks.push_back({"results", name, Status::Fail, why});
+  g.closed = true;
   return g;
 }
 
-namespace {
-
 std::string num(double x) { return fmt::format("{:.4g}", x); }
+
+bool positive_seconds(double s) { return std::isfinite(s) && s > 0; }
+
+// Rows whose wall time the speed checks use (drift rows are not timed; peers are not PGE's); in
+// inputs the gate accepts (unusable_results) their wall time is positive.
+bool timed(const Row& x) { return x.kind != RowKind::Drift && x.kind != RowKind::Peer && x.error.empty(); }
+
+}  // namespace
+
+GateResult unreadable(const std::string& what) { return closed("results readable", what); }
+
+GateResult unusable(const std::string& why) { return closed("results usable", why); }
+
+std::string unusable_results(const Results& r) {
+  if (r.rows.empty()) return "no rows: nothing to gate";
+  if (!positive_seconds(r.meta.calibration_seconds))
+    return fmt::format("calibration_seconds is {}, not a measured time: speed cannot be compared",
+                       num(r.meta.calibration_seconds));
+  for (const Row& x : r.rows)
+    if (timed(x) && !positive_seconds(x.wall_seconds))
+      return fmt::format("row {}: wall_seconds is {}, not a measured time: its speed cannot be compared", x.key(),
+                         num(x.wall_seconds));
+  return {};
+}
+
+std::string unusable_baseline(const Results& b) {
+  if (std::string why = unusable_results(b); !why.empty()) return why;
+  const bool gated = std::any_of(b.rows.begin(), b.rows.end(),
+                                 [](const Row& x) { return x.kind != RowKind::Peer && x.error.empty(); });
+  if (!gated)
+    return fmt::format("none of its {} rows can be gated against: each is a failed run or a peer's", b.rows.size());
+  return {};
+}
+
+namespace {
 
 struct Gater {
   const GatePolicy& policy;
@@ -62,6 +99,9 @@ struct Gater {
 }  // namespace
 
 GateResult gate(const Results& baseline, const Results& results, const GatePolicy& policy) {
+  // Fail closed: an empty or unmeasured input would otherwise pass with nothing compared.
+  if (const std::string why = unusable_baseline(baseline); !why.empty()) return unusable("baseline: " + why);
+  if (const std::string why = unusable_results(results); !why.empty()) return unusable("results: " + why);
   Gater g{policy, {}};
   const Meta& bm = baseline.meta;
   const Meta& rm = results.meta;
@@ -95,10 +135,6 @@ GateResult gate(const Results& baseline, const Results& results, const GatePolic
   std::map<std::string, Speed> relative, calibrated_speed;
   const bool comparable_build =
       bm.validate == rm.validate && bm.sanitize == rm.sanitize && bm.build_type == rm.build_type;
-  const bool calibrated = bm.calibration_seconds > 0 && rm.calibration_seconds > 0;
-  const auto timed = [](const Row& x) {
-    return x.kind != RowKind::Drift && x.kind != RowKind::Peer && x.error.empty() && x.wall_seconds > 0;
-  };
   std::map<std::string, double> reference_now, reference_base;  // by scene key
   for (const Row& x : results.rows)
     if (timed(x) && x.config() == policy.reference) reference_now[x.scene_key()] = x.wall_seconds;
@@ -148,7 +184,7 @@ GateResult gate(const Results& baseline, const Results& results, const GatePolic
         Speed& s = relative[b.config()];
         s.log_sum += std::log((r.wall_seconds / ref_now->second) / (b.wall_seconds / ref_base->second));
         ++s.n;
-      } else if (calibrated) {
+      } else {
         Speed& s = calibrated_speed[b.config()];
         s.log_sum += std::log((r.wall_seconds / rm.calibration_seconds) / (b.wall_seconds / bm.calibration_seconds));
         ++s.n;
@@ -171,8 +207,6 @@ GateResult gate(const Results& baseline, const Results& results, const GatePolic
               fmt::format("{}x the baseline's time relative to {} on the same scenes, over {} scenes (allowed up to {}x)",
                           num(factor), policy.reference, s.n, num(policy.speed_factor)));
     }
-    if (!calibrated && !calibrated_speed.empty())
-      g.check("speed", "calibrated", false, "a calibration time is missing: speed cannot be compared");
     for (const auto& [config, s] : calibrated_speed) {
       const double factor = std::exp(s.log_sum / s.n);
       g.check("speed", config + ": speed (calibrated)", factor <= policy.calibrated_factor,

@@ -174,8 +174,11 @@ Results from_json_text(const std::string& text, const std::string& origin) {
     const json j = json::parse(text);
     Results r;
     r.meta = meta_from(j.at("meta"));
+    // Iterating null or an object would give no rows, and the gate nothing to compare.
+    const json& rows = j.at("rows");
+    if (!rows.is_array()) throw ReportError(fmt::format("\"rows\" is {}, not an array", rows.type_name()));
     std::set<std::string> keys;
-    for (const json& row : j.at("rows")) {
+    for (const json& row : rows) {
       r.rows.push_back(row_from(row));
       if (!keys.insert(r.rows.back().key()).second) throw ReportError("row " + r.rows.back().key() + " appears twice");
     }

@@ -8,7 +8,10 @@
 #   gate with exit 9, a Markdown summary naming the regressed checks and JUnit XML with failures;
 #   the scene that shows it is the regression fixture where fast's closed-form quartic is 1e13 ulps
 #   late (fixtures/regressions/quartic-hit-at-1e8-mps.json), 0.8 of the contact distance deep;
-# - the gate fails closed (exit 10) on missing, empty or corrupt results and a missing baseline;
+# - the gate fails closed (exit 10) on missing, empty or corrupt results and a missing baseline,
+#   and with one line saying why on files that read but leave nothing to compare (issue 22: rows
+#   [], null or {}, every baseline row a failed run, no calibration time, wall times of 0), all of
+#   which passed before; --update refuses to write a baseline from empty results;
 # - --update refuses results with an injected regression and writes a baseline otherwise;
 # - two shards merged give the rows of the unsharded run, with the same accuracy figures; a
 #   missing shard is refused (exit 10).
@@ -68,6 +71,36 @@ head -c 500 "$out/base/results.json" > "$out/cut.json"
 "$pge" gate --baseline "$out/nothing.json" --results "$out/base" --out "$out/g6" > /dev/null 2>&1
 [[ $? -eq 10 ]] || fail "missing baseline: expected exit 10"
 
+# Fail closed on files that read but leave nothing to compare: each of these passed before.
+expect_error=$(dirname "$0")/expect_error.sh
+edited() {  # edited NAME PYTHON: the base results with d (the JSON) changed by PYTHON
+  python3 - "$out/base/results.json" "$out/$1.json" "$2" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+exec(sys.argv[3])
+json.dump(d, open(sys.argv[2], "w"))
+PY
+  echo "$out/$1.json"
+}
+closed() {  # closed NEEDLE -- GATE ARGS: exit 10 and one line on stderr holding NEEDLE
+  local needle=$1; shift 2
+  "$expect_error" 10 "$needle" -- "$pge" gate --out "$out/closed" "$@" || fail "pge gate $*: not closed on: $needle"
+}
+closed 'baseline: no rows' -- --baseline "$(edited rows-empty 'd["rows"] = []')" --results "$out/base"
+closed '"rows" is null, not an array' -- --baseline "$(edited rows-null 'd["rows"] = None')" --results "$out/base"
+closed '"rows" is object, not an array' -- --baseline "$(edited rows-object 'd["rows"] = {}')" --results "$out/base"
+closed 'baseline: none of its 12 rows can be gated' -- \
+  --baseline "$(edited all-failed 'for r in d["rows"]: r["error"] = "failed on purpose"')" --results "$out/base"
+# robust/double (the reference, compared by calibration) 100x slower, and no calibration time.
+closed 'results: calibration_seconds is 0' -- --baseline "$out/base/results.json" --results "$(edited uncalibrated '
+d["meta"]["calibration_seconds"] = 0
+for r in d["rows"]:
+    if (r["solver"], r["scalar"]) == ("robust", "double"): r["wall_seconds"] *= 100')"
+closed 'wall_seconds is 0' -- --baseline "$out/base/results.json" \
+  --results "$(edited untimed 'for r in d["rows"]: r["wall_seconds"] = 0')"
+closed 'no baseline written' -- --update --baseline "$out/empty-baseline.json" --results "$out/rows-empty.json"
+[[ ! -e $out/empty-baseline.json ]] || fail "--update wrote a baseline of no rows"
+
 # --update.
 "$pge" gate --update --baseline "$out/new-baseline.json" "${sweep[@]:1}" --inject-regression fast-solver --out "$out/g7" \
   > /dev/null 2>&1
@@ -97,4 +130,4 @@ for k in a:
 PY
 "$pge" report --merge "$out/s0" --out "$out/half" -q > /dev/null 2>&1
 [[ $? -eq 10 ]] || fail "merging one of two shards: expected exit 10"
-echo "ok: report, gate pass, forced regression exit 9, fail-closed exit 10, update, shards merged"
+echo "ok: report, gate pass, forced regression exit 9, fail-closed exit 10 (also on nothing to compare), update, shards merged"

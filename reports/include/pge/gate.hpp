@@ -38,14 +38,25 @@ struct GateCheck {
 struct GateResult {
   std::vector<GateCheck> checks;
   std::vector<std::string> notes;  // what was not gated and why (new rows, ...)
+  // The inputs could not be gated at all (unreadable or unusable; `pge gate` exits 10, not 9):
+  // then `checks` holds the one failed check that says why.
+  bool closed = false;
   bool pass() const;
   std::size_t failures() const;
 };
 
 // Compares; never throws on differences (they are failed checks). A row of the baseline missing
 // from the results, a results row that failed to run, or a build that cannot be compared for
-// speed fails closed.
+// speed fails closed. Inputs that unusable_baseline or unusable_results reject are not compared:
+// the result is closed.
 GateResult gate(const Results& baseline, const Results& results, const GatePolicy& policy);
+
+// Why results cannot be gated, or gated against ("" when they can): they have no rows, or a
+// calibration time or a timed row's wall time that is not a positive number (speed would go
+// unchecked). A baseline must also have a row the gate compares: not all failed runs or peers'.
+// `pge gate --update` refuses to write a baseline that unusable_baseline rejects.
+std::string unusable_results(const Results& results);
+std::string unusable_baseline(const Results& baseline);
 
 void write_junit(std::ostream& out, const GateResult& g, const std::string& suite);
 // A Markdown summary: the verdict first, then every failure, then the speed table.
@@ -53,6 +64,8 @@ void write_gate_markdown(std::ostream& out, const GateResult& g, const Results& 
                          const GatePolicy& policy);
 // The gate's failing check when the results could not be read at all (fail closed).
 GateResult unreadable(const std::string& what);
+// The same for inputs that were read but cannot be gated (see unusable_results).
+GateResult unusable(const std::string& why);
 
 // The machine epsilon of a scalar by name (float, double, long-double, quad); double's for others.
 double scalar_epsilon(const std::string& scalar);
