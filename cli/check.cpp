@@ -4,6 +4,7 @@
 #include "exit_codes.hpp"
 #include "expect.hpp"
 #include "run.hpp"
+#include "stdout.hpp"
 
 #include "pge/oracle.hpp"
 #include "pge/scene_io.hpp"
@@ -16,7 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
+#include <ostream>
 #include <optional>
 #include <stdexcept>
 
@@ -303,8 +304,8 @@ int check_command(const CheckOptions& opt) {
   }
   if (opt.table) {
     if (opt.table_out.empty()) {
-      write_table(std::cout, out.table);
-      std::cout.flush();
+      write_table(pge_stdout(), out.table);
+      pge_stdout().flush();
     } else {
       std::ofstream table(opt.table_out);
       write_table(table, out.table);

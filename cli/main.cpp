@@ -7,11 +7,14 @@
 #include "render.hpp"
 #include "report.hpp"
 #include "run.hpp"
+#include "stdout.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <sstream>
@@ -35,6 +38,23 @@ const CLI::Validator kNonNegative(
     },
     "NONNEGATIVE");
 
+// An event count: 1 to 2^64 - 1, in decimal. CLI11 reads integers with strtoull, which turns any
+// number past 2^64 - 1 into 2^64 - 1 without a word (a scene's run.max_events that large is an
+// error), and reads "010" as octal 8 and "0x10" as 16; the text is checked here and rewritten to
+// the decimal number read.
+const CLI::Validator kEventCount(
+    [](std::string& text) {
+      std::uint64_t n = 0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+      if (ec == std::errc::result_out_of_range)
+        return fmt::format("must be at most {} (2^64 - 1), got {}", UINT64_MAX, text);
+      if (ec != std::errc{} || end != text.data() + text.size() || n == 0)
+        return "must be a positive integer, got " + text;
+      text = std::to_string(n);
+      return std::string{};
+    },
+    "COUNT");
+
 // "i/n" with 0 <= i < n; false otherwise.
 bool parse_shard(const std::string& text, unsigned& shard, unsigned& shards) {
   char slash = 0;
@@ -51,6 +71,7 @@ std::string command_line(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace pge::cli;
+  send_library_stdout_to_stderr();
   CLI::App app{"pge: an event-driven 2D physics engine and the harness that checks it.\n"};
   app.footer(kExitCodeHelp);
   app.require_subcommand(1);
@@ -62,7 +83,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scenes", run.scenes, "Scene files (pge-scene/1 JSON) or directories of them")->required();
   run_cmd->add_option("--until", run.until, "Simulated seconds (default: each scene's run.until)")->check(kPositive);
   run_cmd->add_option("--max-events", run.max_events, "Stop after this many collisions (default: the scene's run.max_events)")
-      ->check(kPositive);
+      ->transform(kEventCount);
   run_cmd->add_option("--frames", run.frames, "Frame events per simulated second, sampled into the trace (default: the scene's; 0: none)")
       ->check(kNonNegative);
   run_cmd->add_option("--trace", run.trace, "Write the event trace of the (single) scene to FILE as JSON Lines");
@@ -99,7 +120,7 @@ int main(int argc, char** argv) {
       ->required();
   check_cmd->add_option("--until", check.until, "Simulated seconds (default: each scene's run.until)")->check(kPositive);
   check_cmd->add_option("--max-events", check.max_events, "Stop after this many collisions (default: the scene's run.max_events)")
-      ->check(kPositive);
+      ->transform(kEventCount);
   check_cmd->add_option("--scalar", check.scalar, "Number type: float, double, long-double, quad")
       ->check(CLI::IsMember({"float", "double", "long-double", "quad"}));
   CLI::Option* check_solver =
@@ -160,7 +181,7 @@ int main(int argc, char** argv) {
   gen_cmd->add_option("--speed", gen.gas.speed, "Velocity components uniform in [-speed, speed]")->check(kNonNegative);
   gen_cmd->add_option("--gravity", gen.gas.gravity, "Downward gravity (0: none)")->check(kNonNegative);
   gen_cmd->add_option("--until", gen.gas.until, "The scene's run.until")->check(kPositive);
-  gen_cmd->add_option("--max-events", gen.gas.max_events, "The scene's run.max_events")->check(kPositive);
+  gen_cmd->add_option("--max-events", gen.gas.max_events, "The scene's run.max_events")->transform(kEventCount);
   gen_cmd->add_option("--seed", gen.gas.seed, "Seed of the generator");
   gen_cmd->add_option("-o,--out", gen.out, "Output file (default: stdout)");
 
@@ -199,7 +220,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"accuracy", "scaling", "drift", "peers"}))
       ->delimiter(',');
   report_cmd->add_option("--max-events", report.max_events, "Contact events per accuracy scene, at most the scene's own (default: 500 quick, 2,000 full)")
-      ->check(kPositive);
+      ->transform(kEventCount);
   report_cmd->add_option("--repeats", report.repeats, "Timed runs per row, at least (default: 3 quick, 5 full; the median counts)")
       ->check(CLI::Range(1u, 1000u));
   report_cmd->add_option("--shard", report_shard, "i/n: run the i-th of n disjoint parts (0-based); results.json only");
@@ -294,7 +315,7 @@ int main(int argc, char** argv) {
   render_cmd->add_option("-o,--out", render.out, "Output: FILE.svg or FILE.html")->required();
   render_cmd->add_option("--until", render.until, "Simulated seconds (default: the scene's run.until)")->check(kPositive);
   render_cmd->add_option("--max-events", render.max_events, "Stop after this many collisions (default: the scene's)")
-      ->check(kPositive);
+      ->transform(kEventCount);
   render_cmd->add_option("--solver", render.solver, "Root solver (default: the scene's run.solver)")
       ->check(CLI::IsMember({"fast", "robust", "certified"}));
   render_cmd->add_option("--frames", render.frames, "Trajectory samples per simulated second")->check(kPositive)->capture_default_str();

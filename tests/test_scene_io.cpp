@@ -617,6 +617,29 @@ TEST(SceneErrors, HugeValuesAreCutInMessages) {
       "ball", "circle.radius", "must be a number"));
 }
 
+TEST(SceneErrors, SyntaxErrorBetweenBodiesNamesTheBodyBeforeIt) {
+  // Past a syntax error the reader's re-scan loses count of the bodies (a missing comma does not
+  // advance it), and the id was looked up in the whole text: an error just after body 1 was
+  // named body "c" (bodies[1]), the index of one body with the id of the next.
+  const auto body = [](const std::string& id, const std::string& x) {
+    return R"({"id": ")" + id + R"(", "circle": {"radius": 1}, "position": [)" + x +
+           R"(, 0], "mass": 1})";
+  };
+  // Garbage instead of the comma or before it, a missing comma, a stray brace, a second comma.
+  for (const std::string gap : {"x", "x,", " x,", "", "},", ",,"}) {
+    const std::string after_1 = body("a", "0") + ",\n" + body("b", "10") + gap + "\n" +
+                                body("c", "20") + ",\n" + body("d", "30");
+    const SceneError e1 = parse_error(scene_with_bodies(after_1), "b", "", "syntax error");
+    EXPECT_EQ(e1.body_index(), 1) << e1.what();
+    EXPECT_EQ(e1.line(), gap.empty() ? 3 : 2) << e1.what();  // a missing comma shows at "c"
+    const std::string between_2_and_3 = body("a", "0") + ",\n" + body("b", "10") + ",\n" +
+                                        body("c", "20") + gap + "\n" + body("d", "30");
+    const SceneError e2 = parse_error(scene_with_bodies(between_2_and_3), "c", "", "syntax error");
+    EXPECT_EQ(e2.body_index(), 2) << e2.what();
+    EXPECT_EQ(e2.line(), gap.empty() ? 4 : 3) << e2.what();  // a missing comma shows at "d"
+  }
+}
+
 TEST(SceneErrors, UnreadableFile) {
   const std::string path = "/nonexistent/dir/scene.json";
   try {

@@ -53,6 +53,11 @@ std::string_view word_at(std::string_view text, std::size_t offset) {
   return text.substr(begin, end - begin);
 }
 
+// Whether `path` is in a body, bodies[i] or below it.
+bool in_body(const JsonPath& path) {
+  return path.size() >= 2 && path[0].index < 0 && path[0].key == "bodies" && path[1].index >= 0;
+}
+
 bool is_nan_or_infinity(std::string_view word) {
   if (!word.empty() && (word[0] == '-' || word[0] == '+')) word.remove_prefix(1);
   std::string lower(word);
@@ -114,7 +119,10 @@ class SceneReader {
  private:
   // --- errors --------------------------------------------------------------------------------
 
-  SceneErrorPlace place(const JsonPath& path, std::size_t offset) const {
+  // The place of an error at `path` and `offset`. The body's id is the last "id" at its path in
+  // text_[0, id_end): the whole text when it is valid JSON.
+  SceneErrorPlace place(const JsonPath& path, std::size_t offset,
+                        std::size_t id_end = std::string_view::npos) const {
     SceneErrorPlace where;
     where.file = origin_;
     if (offset != std::string_view::npos) {
@@ -122,14 +130,13 @@ class SceneReader {
       where.line = pos.line;
       where.column = pos.column;
     }
-    const bool in_body =
-        path.size() >= 2 && path[0].index < 0 && path[0].key == "bodies" && path[1].index >= 0;
-    if (in_body) {
+    if (in_body(path)) {
       where.body_index = path[1].index;
-      const std::size_t id = find_value(text_, JsonPath{path[0], path[1]} + "id");
-      if (id != std::string_view::npos) where.body_id = string_literal(text_, id);
+      const std::string_view text = text_.substr(0, id_end);
+      const std::size_t id = find_value(text, JsonPath{path[0], path[1]} + "id");
+      if (id != std::string_view::npos) where.body_id = string_literal(text, id);
     }
-    where.field = dotted(path, in_body ? 2 : 0);
+    where.field = dotted(path, in_body(path) ? 2 : 0);
     return where;
   }
 
@@ -146,10 +153,32 @@ class SceneReader {
     throw SceneError(place(path, locate(path)), reason);
   }
 
+  // An error at `offset` in a file that parsed (a duplicate key, a number out of range).
   [[noreturn]] void fail_at(std::size_t offset, const std::string& reason) const {
     const JsonPath path =
         walk_json(text_, offset, [](const JsonToken&, const JsonPath&) { return true; });
     throw SceneError(place(path, offset), reason);
+  }
+
+  // An error at `offset` in text that did not parse: a syntax error, or nesting past the limit.
+  // Past the error the walk's indices drift from the file's (a missing comma does not advance
+  // them), so the last "id" at bodies[i] in the whole text may be another body's: an error just
+  // after body 1 was named body "c" (bodies[1]). The body named is the last one begun before the
+  // error, with the id inside its own braces; an error between two bodies (after one closed,
+  // before the next opens) names the one before it.
+  [[noreturn]] void fail_unparsed(std::size_t offset, const std::string& reason) const {
+    int body = -1;
+    std::size_t body_begin = std::string_view::npos;
+    JsonPath path = walk_json(text_, offset, [&](const JsonToken& token, const JsonPath& at) {
+      if (!token.is_key && at.size() == 2 && in_body(at) && text_[token.begin] == '{') {
+        body = at[1].index;
+        body_begin = token.begin;
+      }
+      return true;
+    });
+    if (path.size() == 2 && in_body(path) && body >= 0) path[1].index = body;
+    const bool begun = in_body(path) && path[1].index == body;
+    throw SceneError(place(path, offset, begun ? value_end(text_, body_begin) : 0), reason);
   }
 
   [[noreturn]] void report(const SceneProblem& problem, const Scene& scene) const {
@@ -167,8 +196,8 @@ class SceneReader {
 
   Json parse_json() const {
     if (const std::size_t deep = nesting_too_deep(text_, kMaxDepth); deep != std::string_view::npos)
-      fail_at(deep, fmt::format("nested more than {} levels deep in [ and {{ (a scene needs 6)",
-                                kMaxDepth));
+      fail_unparsed(deep,
+                    fmt::format("nested more than {} levels deep (a scene needs 6)", kMaxDepth));
     Json root;
     bool overflow = false;
     try {
@@ -177,9 +206,10 @@ class SceneReader {
       const std::size_t offset =
           std::min<std::size_t>(error.byte > 0 ? error.byte - 1 : 0, text_.size());
       if (is_nan_or_infinity(word_at(text_, offset)))
-        fail_at(offset, fmt::format("{} is not a JSON number; NaN and infinities are not allowed",
-                                    word_at(text_, offset)));
-      fail_at(offset, syntax_reason(error));
+        fail_unparsed(offset,
+                      fmt::format("{} is not a JSON number; NaN and infinities are not allowed",
+                                  word_at(text_, offset)));
+      fail_unparsed(offset, syntax_reason(error));
     } catch (const Json::out_of_range&) {
       overflow = true;  // located by check_tokens
     }
