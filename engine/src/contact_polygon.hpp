@@ -100,11 +100,16 @@ std::optional<Cone<T>> overlap_cone(const BodyShape<T>& P, std::size_t k, const 
 }
 
 // Whether a point leaving the cone's apex with velocity u and acceleration a goes strictly
-// inside it: u inside; or u along a bounding ray and a turning it inwards; or u zero and a inside.
+// inside it: u inside; or u along a bounding ray and a turning it inwards; or u zero, or along
+// the boundary line of a half-plane cone, and a inside.
 template <class T> bool enters_cone(const Cone<T>& cone, const Vec2<T>& u, const Vec2<T>& a) {
   const T right_of_cw = cross(cone.cw, u);
   const T left_of_ccw = cross(u, cone.ccw);
-  if (u.x == T(0) && u.y == T(0)) return cross(cone.cw, a) > T(0) && cross(a, cone.ccw) > T(0);
+  const auto a_inside = [&] { return cross(cone.cw, a) > T(0) && cross(a, cone.ccw) > T(0); };
+  if (u.x == T(0) && u.y == T(0)) return a_inside();
+  // Along both bounding rays: the cone is a half-plane (a vertex lying on a segment or on a flat
+  // face) and u slides along its boundary line; a turns it inwards or not (box-slide.json).
+  if (right_of_cw == T(0) && left_of_ccw == T(0)) return a_inside();
   if (right_of_cw > T(0) && left_of_ccw > T(0)) return true;
   if (right_of_cw == T(0) && left_of_ccw > T(0)) return cross(cone.cw, a) > T(0);
   if (left_of_ccw == T(0) && right_of_cw > T(0)) return cross(a, cone.ccw) > T(0);

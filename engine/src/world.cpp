@@ -155,6 +155,7 @@ template <class T> struct World<T>::Impl {
     if (a.fixed && b.fixed) return std::nullopt;
     if (excluded(a, hi, b) || excluded(b, lo, a)) return std::nullopt;
     if (a.rests_on(hi) || b.rests_on(lo)) return std::nullopt;  // touching all along: no event
+    if (continues_support(a, b) || continues_support(b, a)) return std::nullopt;  // a joint: no event
     ++counts.predictions;
     const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
     std::optional<PredictedContact<T>> c;
@@ -792,14 +793,64 @@ template <class T> struct World<T>::Impl {
     resolve_supports(m);  // with no face left: the field's acceleration again
   }
 
-  // A resting body slides off its face's end: the face stops holding it.
+  // Whether fixed body j continues a face that the resting body m slides on: an edge of j on the
+  // face's line, both its ends exactly (cross(x - origin, u) == 0 in T: exact for axis-aligned
+  // faces; a tilted face's rounded direction rarely passes), running the same way, so with the
+  // same outward normal (floor tiles, boxes side by side). j is convex, so it lies wholly behind
+  // that line, and m, which moves along it, can meet j only on the line: a joint, never an
+  // approach. Predicted, the rounding of m's height made contacts there (a ball landed an ulp
+  // deep struck the next tile's corner in a storm of 3e-8 impulses). The oracle skips the same
+  // pairs (oracle/src/search.cpp, flush_with_support).
+  bool continues_support(const Body& m, const Body& j) const {
+    if (m.supports == 0 || !j.fixed || !j.shape.is_outline()) return false;
+    const BodyShape<T>& shape = j.shape;
+    for (int k = 0; k < m.supports; ++k) {
+      const Support& f = m.support[static_cast<std::size_t>(k)];
+      const auto on_line = [&](const Vec2<T>& x) { return pge::cross(x - f.origin, f.u) == T(0); };
+      for (std::size_t e = 0; e < shape.edges.size(); ++e)
+        if (dot(shape.edges[e], f.u) > T(0) && on_line(shape.world[e]) && on_line(shape.world[(e + 1) % shape.world.size()]))
+          return true;
+    }
+    return false;
+  }
+
+  // The fixed face that continues `old` past the end the resting body m is leaving it by (floor
+  // tiles, boxes side by side): the same outward normal, holding the end point, its line through
+  // that point within the rounding of m's position (kRestHeightUlps ulps of its coordinate
+  // scale; a step is a real contact, left to the predictions). Nothing if there is none.
+  std::optional<Support> continuing_face(BodyIndex mi, const Support& old) {
+    using std::abs;
+    const Body& m = bodies[mi];
+    const Vec2<T> p = kinematics(m, now).p;
+    const bool off_end = dot(p - old.origin, old.u) + old.s_lo > old.length;
+    const Vec2<T> end = off_end ? old.origin + old.u * old.length : old.origin;
+    const T tolerance = T(kRestHeightUlps) * std::numeric_limits<T>::epsilon() * m.shape.coordinate_scale(p);
+    std::optional<Support> next;
+    for_candidates(mi, [&](BodyIndex j) {
+      if (next || j == old.body || !bodies[j].fixed) return;
+      const std::optional<Support> f = face_of(j, old.n, end);
+      if (f && abs(dot(end - f->origin, f->n)) <= tolerance) next = f;
+    });
+    if (next) contact_span(m, *next);
+    return next;
+  }
+
+  // A resting body slides off its face's end: the face stops holding it, and a face that
+  // continues it holds it instead (without this a ball crossing the joint of two collinear
+  // segments collided with the first one's end in a storm of zero impulses: the contact point an
+  // ulp past its end still counts as on its edge, and a face's end is no place to rest).
   void leave(const Scheduled<T>& s, BodyIndex owner) {
     Body& m = bodies[owner];
     rebase(m, now);
     const std::size_t k = s.feature_a;
     if (k < static_cast<std::size_t>(m.supports) && m.support[k].body == s.partner) {
+      const Support old = m.support[k];
       for (std::size_t j = k; j + 1 < static_cast<std::size_t>(m.supports); ++j) m.support[j] = m.support[j + 1];
       --m.supports;
+      if (const std::optional<Support> next = continuing_face(owner, old); next && !m.rests_on(next->body)) {
+        m.support[static_cast<std::size_t>(m.supports++)] = *next;
+        ++counts.rests;
+      }
     }
     resolve_supports(m);
     ++m.version;

@@ -89,10 +89,41 @@ std::optional<PairResult> pair_contact(Frame& fr, FeatureCache& features, BodyIn
   return best;
 }
 
+// Whether fixed body j is flush with a support s of the resting body i: an edge of j on the line
+// of the edge of s that i lies in front of and moves along (velocity and acceleration parallel
+// to it), running the same way (the same outward side), all exactly. i then slides along one surface from s
+// onto j: floor tiles, boxes side by side. The engine skips the same pairs
+// (World::continues_support).
+static bool flush_with_support(const Frame& fr, BodyIndex i, BodyIndex j) {
+  const BodyModel<Dyadic>& m = fr.exact_body(i);
+  const BodyModel<Dyadic>& b = fr.exact_body(j);
+  if (m.fixed || !b.fixed || b.shape == ShapeKind::Circle) return false;
+  for (const BodyIndex s : m.supports) {
+    if (s == kNoBody || s == j) continue;
+    const BodyModel<Dyadic>& f = fr.exact_body(s);
+    if (f.shape == ShapeKind::Circle) continue;
+    for (int k = 0; k < vertex_count(f); ++k) {
+      const V2<Dyadic>& a = f.world[static_cast<std::size_t>(k)];
+      const V2<Dyadic> e = edge_vector(f, k);
+      // The face i rests on: i in front of it (outlines run counter-clockwise, a segment both
+      // ways), moving along it.
+      if (cross(m.p0 - a, e).sign() <= 0 || !cross(m.v0, e).is_zero() || !cross(m.acc, e).is_zero()) continue;
+      for (int l = 0; l < vertex_count(b); ++l) {
+        const V2<Dyadic>& c = b.world[static_cast<std::size_t>(l)];
+        const V2<Dyadic>& d = b.world[static_cast<std::size_t>(next_vertex(b, l))];
+        if (cross(c - a, e).is_zero() && cross(d - a, e).is_zero() && dot(d - c, e).sign() > 0) return true;
+      }
+    }
+  }
+  return false;
+}
+
 // A body resting on a fixed face (ExactMotion::supports) touches it all along its path: a
-// contact state, which has no events (DESIGN.md, resting contact).
+// contact state, which has no events (DESIGN.md, resting contact); so does a body flush with that
+// face, which the resting body meets only where the two join.
 static bool resting_pair(const Frame& fr, BodyIndex i, BodyIndex j) {
-  return fr.exact_body(i).rests_on(j) || fr.exact_body(j).rests_on(i);
+  return fr.exact_body(i).rests_on(j) || fr.exact_body(j).rests_on(i) || flush_with_support(fr, i, j) ||
+         flush_with_support(fr, j, i);
 }
 
 std::vector<BodyPair> candidate_pairs(Frame& fr, FeatureCache& features, const Interval& window, bool filter,
