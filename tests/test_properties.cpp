@@ -108,12 +108,14 @@ RC_GTEST_PROP(Properties, MechanicalEnergyDriftIsBoundedPerEvent, ()) {
     for (BodyIndex i = 0; i < w.body_count(); ++i) {
       if (w.is_fixed(i)) continue;
       const BodySnapshot<double> s = w.snapshot(i);
-      const BodyMotion<double> m = w.motion(i);
+      // The field's acceleration (gravity and the body's own), not the path's: a resting body's
+      // path drops the normal part, which the face's reaction balances and which does no work.
+      const Vec2d acc = w.field_acceleration(i);
       const Rational mass = exact(w.mass(i));
       e += mass * (exact(s.velocity.x) * exact(s.velocity.x) + exact(s.velocity.y) * exact(s.velocity.y)) / 2;
-      e -= mass * (exact(m.acc.x) * exact(s.position.x) + exact(m.acc.y) * exact(s.position.y));
+      e -= mass * (exact(acc.x) * exact(s.position.x) + exact(acc.y) * exact(s.position.y));
       scale += w.mass(i) * (dot(s.velocity, s.velocity) / 2 +
-                            std::hypot(m.acc.x, m.acc.y) * std::hypot(s.position.x, s.position.y));
+                            std::hypot(acc.x, acc.y) * std::hypot(s.position.x, s.position.y));
     }
     return e;
   };
@@ -134,6 +136,23 @@ RC_GTEST_PROP(Properties, NoOverlapBeyondTheBound, ()) {
     const auto o = w.largest_overlap();
     RC_ASSERT(o.ulps <= kOverlapBoundUlps);
   }
+}
+
+// 4b. Stacks (two moving boxes pressed together on a floor, off in the default generator: a
+// resting contact between moving bodies, which the engine reports as an event storm by design)
+// may storm, but never sink into each other or through the floor: the overlap bound holds at
+// every event until the run ends. Runs stop at 200 collisions, before a storm (kStormCollisions)
+// is declared: the storms' cost, not their report, is what this leaves out.
+RC_GTEST_PROP(Properties, StacksStormButNeverOverlap, ()) {
+  GenOptions o;
+  o.motif_mask = motif_bit(Motif::Stack);
+  o.max_motifs = 2;
+  o.max_events = 200;
+  const GeneratedScene g = *gen_scene(o);
+  classify(g);
+  World<double> w(g.scene);
+  while (w.step()) RC_ASSERT(w.largest_overlap().ulps <= kOverlapBoundUlps);
+  RC_CLASSIFY(w.stop_reason() == StopReason::MaxEvents, "stopped at max_events");
 }
 
 // Events as (time, lower id, higher id), up to (not including) the first instant at which two
@@ -318,10 +337,12 @@ RC_GTEST_PROP(Properties, ElasticRunsAreReversible, ()) {
 }
 
 // The generators make every motif kind; the classification shows each kind's share, and every
-// case's single motif is checked to be what the scene holds.
+// case's single motif is checked to be what the scene holds. (Stack included here: the default
+// mask leaves it out, see GenOptions::motif_mask.)
 RC_GTEST_PROP(Properties, GeneratorsCoverEveryMotif, ()) {
   GenOptions o;
   o.max_motifs = 1;
+  o.motif_mask = ~0u;
   const GeneratedScene g = *gen_scene(o);
   RC_ASSERT(g.motifs.size() == 1u);
   RC_CLASSIFY(true, std::string(motif_name(g.motifs[0])));

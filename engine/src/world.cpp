@@ -633,7 +633,11 @@ template <class T> struct World<T>::Impl {
     for (std::size_t k = 0; k < shape.edges.size(); ++k) {
       const T len = shape.edge_length[k];
       if (!(len > T(0))) continue;
-      const Vec2<T> u = shape.edges[k] * (T(1) / len);
+      // Divided, not multiplied by 1 / len: an axis-aligned edge's direction is then exactly a
+      // unit axis, so the resting body's projected acceleration has no normal part at all (with
+      // the reciprocal, a floor of length 7.98828125 gave (-0.9999999999999999, 0), and a ball
+      // resting on it sank by 4e-16 in 4 s: found by the tile-joint motif).
+      const Vec2<T> u{shape.edges[k].x / len, shape.edges[k].y / len};
       const Vec2<T> out{u.y, -u.x};  // outward for counter-clockwise outlines; a segment has both sides
       const T c = dot(out, n);
       if (!(c >= T(1) - T(kRestNormalTolerance))) continue;

@@ -53,6 +53,8 @@ struct MotifSpec {
   int mass_exp = 0;          // masses 2^k
   double restitution = 1;
   double accel = 0;          // per-body acceleration magnitude parameter (0: none)
+  bool own_acceleration = true;  // floor motifs: pressed by an acceleration of their own
+  bool inelastic = true;         // floor motifs: restitution below 1 allowed
 };
 
 BodyDesc circle_body(double r, Vec2d p, Vec2d v, double mass) {
@@ -89,6 +91,66 @@ void make_fixed(BodyDesc& b) {
   b.fixed = true;
   b.velocity = {};
   b.acceleration = {};
+}
+
+// The motifs on a floor (RestSlide, TileJoint, Stack): what games are made of. The floor's top
+// is y = 0: one segment or fixed box, or (TileJoint) two of them meeting at a joint x = j; the
+// movers lie exactly on it (or on each other), or (TileJoint, diagonal) drop onto the joint from
+// a height, pressed down by their own acceleration g, with a restitution of their own (0, 0.5 or
+// 1: resting contact takes the bounces that remain).
+std::vector<BodyDesc> realize_on_floor(const MotifSpec& m) {
+  std::vector<BodyDesc> out;
+  const double mass = std::ldexp(1.0, m.mass_exp);
+  const double r1 = quantize(0.5 + 0.25 * m.a, 8);
+  const double r2 = quantize(0.5 + 0.25 * m.b, 8);
+  // Without an acceleration of their own they are pressed by the world's gravity, if any.
+  const double g = m.own_acceleration ? quantize(0.25 + 0.75 * std::abs(m.d), 8) : 0.0;
+  const double restitution = !m.inelastic ? 1.0 : (m.b < -0.5 ? 0.0 : (m.b < 0 ? 0.5 : 1.0));
+  const auto tile = [&](double x0, double x1) {
+    BodyDesc t;
+    if (m.fixed_target) {
+      t = box_body((x1 - x0) / 2, 1, {(x0 + x1) / 2, -1}, {}, 1);
+      make_fixed(t);
+    } else {
+      t.shape = ShapeKind::Segment;
+      t.a = {x0, 0};
+      t.b = {x1, 0};
+      t.fixed = true;
+    }
+    return t;
+  };
+  const double joint = quantize(0.5 * m.a, 8);
+  if (m.kind == Motif::TileJoint) {
+    out.push_back(tile(-8, joint));
+    out.push_back(tile(joint, 8));
+  } else {
+    out.push_back(tile(-8, 8));
+  }
+  // A mover whose lowest point is at height `lift`, centred at x.
+  const auto mover = [&](double x, double lift, double vx, int shape) {
+    BodyDesc b;
+    if (shape == 0) b = circle_body(r1, {x, r1 + lift}, {vx, 0}, mass);
+    else if (shape == 1) b = box_body(r1, r2, {x, r2 + lift}, {vx, 0}, mass);
+    else b = triangle_body(r1, {x, r1 + lift}, {vx, 0}, mass);
+    b.acceleration = {0, -g};
+    b.restitution = restitution < 1 ? restitution : -1;
+    return b;
+  };
+  const int shape = !m.polygon ? 0 : (m.c < 0 ? 2 : 1);
+  const double vx = quantize(m.c);
+  if (m.kind == Motif::Stack) {
+    out.push_back(mover(0, 0, vx, 1));
+    BodyDesc top = box_body(r1 / 2, r2 / 2, {quantize(0.25 * m.d), 2 * r2 + r2 / 2}, {quantize(m.d), 0}, mass);
+    top.acceleration = {0, -g};
+    top.restitution = out.back().restitution;
+    out.push_back(top);
+  } else if (m.kind == Motif::TileJoint && m.diagonal) {
+    out.push_back(mover(joint, quantize(0.25 + 0.5 * std::abs(m.d), 8), vx, shape));  // lands across the joint
+  } else {
+    const double x = m.kind == Motif::TileJoint ? joint - 2 : quantize(2 * m.d);
+    out.push_back(mover(x, 0, m.kind == Motif::TileJoint ? std::abs(vx) + 0.25 : vx, shape));
+  }
+  return out;
 }
 
 // The bodies of a motif at unit scale, centred near the origin.
@@ -176,6 +238,33 @@ std::vector<BodyDesc> realize(const MotifSpec& m) {
       out.push_back(box_body(h2, h2, {h + g + h2, h + g + h2}, {-speed, -speed}, mass));
       break;
     }
+    case Motif::RestSlide:
+    case Motif::TileJoint:
+    case Motif::Stack:
+      return realize_on_floor(m);
+    case Motif::TouchSlide: {
+      // A fixed ceiling (a segment, or a fixed box's bottom face) at y = 0 over x in [-12, 12] and
+      // a body touching it from below, moving along it: zero normal speed, nothing pressing it in
+      // (a graze at t = 0). The ceiling is long enough that no body reaches its ends by the
+      // horizon at unit speed (a graze of a segment's end vertex is a harder case of its own).
+      const Vec2d v{quantize(m.c), 0};
+      if (m.fixed_target) {
+        BodyDesc ceiling = box_body(12, 1, {0, 1}, {}, 1);
+        make_fixed(ceiling);
+        out.push_back(ceiling);
+      } else {
+        BodyDesc ceiling;
+        ceiling.shape = ShapeKind::Segment;
+        ceiling.a = {-12, 0};
+        ceiling.b = {12, 0};
+        ceiling.fixed = true;
+        out.push_back(ceiling);
+      }
+      const double x = quantize(4 * m.d);
+      if (m.polygon) out.push_back(box_body(r1, r2, {x, -r2}, v, mass));
+      else out.push_back(circle_body(r1, {x, -r1}, v, mass));
+      break;
+    }
   }
   for (BodyDesc& b : out) {
     if (b.fixed) continue;
@@ -203,7 +292,7 @@ rc::Gen<Motif> gen_motif_kind(const GenOptions& o) {
   for (int k = 0; k < static_cast<int>(Motif::Count); ++k) {
     const auto m = static_cast<Motif>(k);
     if ((o.motif_mask & motif_bit(m)) == 0) continue;
-    if (m == Motif::CornerHit && !o.polygons) continue;
+    if ((m == Motif::CornerHit || m == Motif::Stack) && !o.polygons) continue;
     allowed.push_back(m);
   }
   if (allowed.empty()) allowed.push_back(Motif::Free);
@@ -218,6 +307,8 @@ rc::Gen<MotifSpec> gen_motif(const GenOptions& o, bool elastic_only, bool with_a
     if (m.scale_exp != 0 && *uniform_in(0, 2) == 0) m.scale_exp = 0;  // half the motifs at unit scale
     m.polygon = o.polygons && *uniform_in(0, 3) == 0;
     m.fixed_target = *uniform_in(0, 2) == 1;
+    const bool boxes_as_floor = m.kind == Motif::RestSlide || m.kind == Motif::TileJoint || m.kind == Motif::TouchSlide;
+    if (boxes_as_floor && !o.polygons) m.fixed_target = false;  // their fixed target is a box
     m.diagonal = *uniform_in(0, 2) == 1;
     m.count = *uniform_in(2, 6);
     m.sign = *uniform_in(0, 2) == 0 ? 1 : -1;
@@ -228,6 +319,8 @@ rc::Gen<MotifSpec> gen_motif(const GenOptions& o, bool elastic_only, bool with_a
     m.mass_exp = *uniform_in(0, 7) - 3;
     if (!elastic_only && *uniform_in(0, 4) == 0) m.restitution = *rc::gen::element(0.0, 0.5, 0.9);
     if (with_accel && *uniform_in(0, 3) == 0) m.accel = *gen_unit(6);
+    m.own_acceleration = o.accelerations;
+    m.inelastic = o.inelastic;
     return m;
   });
 }
@@ -244,6 +337,10 @@ std::string_view motif_name(Motif m) {
     case Motif::Cradle: return "cradle";
     case Motif::WallHit: return "wall-hit";
     case Motif::CornerHit: return "corner-hit";
+    case Motif::RestSlide: return "rest-slide";
+    case Motif::TileJoint: return "tile-joint";
+    case Motif::Stack: return "stack";
+    case Motif::TouchSlide: return "touch-slide";
     case Motif::Count: break;
   }
   return "?";

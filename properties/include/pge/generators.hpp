@@ -25,9 +25,16 @@ enum class Motif : std::uint8_t {
   Cradle,        // a row of touching circles and a striker (simultaneous hand-overs)
   WallHit,       // a circle against a segment, aimed at its interior or exactly at an endpoint
   CornerHit,     // a polygon corner meeting another polygon's corner exactly
+  RestSlide,     // a circle or polygon lying exactly on a fixed floor (segment or box), pressed
+                 // by its own acceleration, sliding or still, any restitution
+  TileJoint,     // the same on a floor of two collinear tiles (segments, or fixed boxes side by
+                 // side), sliding across the joint or landing across it
+  Stack,         // two boxes stacked on a floor, pressed alike, sliding at different speeds
+  TouchSlide,    // a body starting exactly touching a fixed ceiling from below, tangential speed only
   Count,
 };
 std::string_view motif_name(Motif m);
+inline constexpr std::uint32_t motif_bit(Motif m) { return 1u << static_cast<unsigned>(m); }
 
 struct GenOptions {
   int max_motifs = 5;
@@ -38,12 +45,14 @@ struct GenOptions {
                              // resting contact cannot form)
   int min_scale_exp = -10;   // motif scales are 2^k with k in [min, max]: ~1e-3 .. 1e3
   int max_scale_exp = 10;
-  std::uint32_t motif_mask = 0xffffffffu;  // bit k allows Motif k
+  // Bit k allows Motif k. Stack is off by default: two moving boxes pressed together are a
+  // resting contact between moving bodies, which the engine reports as an event storm (by
+  // design, DESIGN.md), and at a thousand cases per property those storms cost minutes.
+  std::uint32_t motif_mask = ~motif_bit(Motif::Stack);
   double until = 4;          // run horizon (in units of the largest motif's time scale 1)
   std::uint64_t max_events = 2000;
 };
 
-inline constexpr std::uint32_t motif_bit(Motif m) { return 1u << static_cast<unsigned>(m); }
 
 struct GeneratedScene {
   Scene scene;
