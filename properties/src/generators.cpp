@@ -87,6 +87,15 @@ BodyDesc triangle_body(double h, Vec2d p, Vec2d v, double mass) {
   return b;
 }
 
+BodyDesc fixed_segment(Vec2d a, Vec2d b) {
+  BodyDesc s;
+  s.shape = ShapeKind::Segment;
+  s.a = a;
+  s.b = b;
+  s.fixed = true;
+  return s;
+}
+
 void make_fixed(BodyDesc& b) {
   b.fixed = true;
   b.velocity = {};
@@ -112,10 +121,7 @@ std::vector<BodyDesc> realize_on_floor(const MotifSpec& m) {
       t = box_body((x1 - x0) / 2, 1, {(x0 + x1) / 2, -1}, {}, 1);
       make_fixed(t);
     } else {
-      t.shape = ShapeKind::Segment;
-      t.a = {x0, 0};
-      t.b = {x1, 0};
-      t.fixed = true;
+      t = fixed_segment({x0, 0}, {x1, 0});
     }
     return t;
   };
@@ -213,12 +219,7 @@ std::vector<BodyDesc> realize(const MotifSpec& m) {
       break;
     }
     case Motif::WallHit: {
-      BodyDesc wall;
-      wall.shape = ShapeKind::Segment;
-      wall.a = {-2, 0};
-      wall.b = {2, 0};
-      wall.fixed = true;
-      out.push_back(wall);
+      out.push_back(fixed_segment({-2, 0}, {2, 0}));
       if (m.diagonal) {
         // Aimed exactly at endpoint b = (2, 0) along (-3, -4): head-on with the vertex.
         const double k = quantize(r1 / 5 + 0.25 + 0.25 * std::abs(m.d), 8);
@@ -253,12 +254,7 @@ std::vector<BodyDesc> realize(const MotifSpec& m) {
         make_fixed(ceiling);
         out.push_back(ceiling);
       } else {
-        BodyDesc ceiling;
-        ceiling.shape = ShapeKind::Segment;
-        ceiling.a = {-12, 0};
-        ceiling.b = {12, 0};
-        ceiling.fixed = true;
-        out.push_back(ceiling);
+        out.push_back(fixed_segment({-12, 0}, {12, 0}));
       }
       const double x = quantize(4 * m.d);
       if (m.polygon) out.push_back(box_body(r1, r2, {x, -r2}, v, mass));
