@@ -565,6 +565,54 @@ TEST(Polygons, PolygonShapeErrorsNameTheVertex) {
   EXPECT_EQ(shape_problem({{0, 0}, {1, 0}}), "p: polygon.vertices: needs at least 3 vertices, got 2");
 }
 
+// A regular n-gon of circumradius 1 centred on its position whose last edge, n - 1 (from vertex
+// n - 1 round to vertex 0), is its bottom: vertex k at angle -pi/2 + pi (2k + 1) / n, so vertices
+// n - 1 and 0 sit at (-+sin(pi/n), -cos(pi/n)) and edge n - 1 faces down, along (0, -1).
+Body regular_polygon(const std::string& id, std::size_t n) {
+  std::vector<Vec2d> v(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double angle = -M_PI / 2 + M_PI * double(2 * k + 1) / double(n);
+    v[k] = {std::cos(angle), std::sin(angle)};
+  }
+  return polygon(id, std::move(v));
+}
+
+// Polygons are limited to kMaxPolygonVertices vertices (feature indices are 16-bit, and a
+// prediction tests every vertex against every edge); one more is refused, naming the field.
+TEST(Polygons, PolygonPastTheVertexLimitIsRefused) {
+  EXPECT_EQ(problem_of(scene_of({regular_polygon("p", kMaxPolygonVertices)}, 1)), "");
+  EXPECT_EQ(problem_of(scene_of({regular_polygon("p", kMaxPolygonVertices + 1)}, 1)),
+            "p: polygon.vertices: has " + std::to_string(kMaxPolygonVertices + 1) + " vertices: at most " +
+                std::to_string(kMaxPolygonVertices) + " (constants.hpp, kMaxPolygonVertices)");
+  EXPECT_THROW(World<double>(scene_of({regular_polygon("p", kMaxPolygonVertices + 1)}, 1)), std::invalid_argument);
+}
+
+// A fixed regular polygon at the vertex limit, n = 1024, its bottom edge 1023 (the highest
+// index, wrapping round to vertex 0) at y = -cos(pi/1024) = -0.99999529..., and a ball of radius
+// 0.5 at (0, -3) rising at 1. At x = 0 the bottom edge is the polygon's lowest point (its
+// vertices are at x = -+sin(pi/1024) = -+0.0031, so the ball meets the edge's interior, not a
+// vertex, and every other edge is higher there): its top -3 + t + 0.5 reaches -cos(pi/1024) at
+// t = 2.5 - cos(pi/1024) = 1.50000470619... A circle/edge contact, polygon (body 0) edge 1023
+// against the ball's feature 0, normal (0, -1) from the polygon to the ball; the fixed polygon
+// reverses the ball: velocity (0, -1). Before the limit, a 70,000-gon reported its edge 68,055
+// as 2,519 (16-bit wrap). Tolerances: the two vertices' y are cos and sin of rounded angles,
+// within ~2e-16 of -cos(pi/1024), so the edge's height at x = 0 and the time (with its own
+// rounding, ulp(1.5) = 2.2e-16) are within 1e-15: 1e-14. The edge's slope is at most
+// 4e-16 / 0.0061 = 7e-14, which tilts the normal and the rebound by as much: 1e-12.
+TEST(Polygons, CircleHitsTheLastEdgeOfAPolygonAtTheVertexLimit) {
+  static_assert(kMaxPolygonVertices == 1024, "the expected values below are derived for n = 1024");
+  World<double> w(scene_of({regular_polygon("round", kMaxPolygonVertices).fixed(), ball("ball", 0.5).at({0, -3}).moving({0, 1})}, 2));
+  const auto events = collisions_of(w);
+  ASSERT_EQ(events.size(), 1u);
+  expect_contact(events[0], {0, 1, ContactKind::CircleEdge, 1023, 0});
+  EXPECT_NEAR(events[0].time, 2.5 - std::cos(M_PI / 1024), 1e-14);
+  EXPECT_NEAR(events[0].time, 1.50000470619, 1e-11);  // the same from a series: 1.5 + x^2/2 - x^4/24, x = pi/1024
+  EXPECT_NEAR(events[0].normal.x, 0, 1e-12);
+  EXPECT_NEAR(events[0].normal.y, -1, 1e-12);
+  EXPECT_NEAR(w.snapshot(1).velocity.x, 0, 1e-12);
+  EXPECT_NEAR(w.snapshot(1).velocity.y, -1, 1e-12);
+}
+
 // A ball of radius 1 centred 1 - 2^-40 above the top face of a fixed box overlaps it by 2^-40,
 // measured against its radius; at the largest coordinate 2 (the box's corner) plus the radius 1,
 // that is 2^-40 / (3 * 2^-52) = 2^12 / 3 ulps of double.

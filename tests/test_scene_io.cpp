@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -531,6 +532,36 @@ TEST(SceneErrors, ClockwisePolygon) {
       scene_with_body(
           R"({"id": "cw", "polygon": {"vertices": [[0, 0], [0, 1], [1, 1], [1, 0]]}, "mass": 1})"),
       "cw", "polygon.vertices[1]", "clockwise");
+}
+
+// A regular polygon of n vertices (circumradius 1) as a body's JSON, each coordinate written with
+// 17 significant digits so that it reads back to the double computed.
+std::string regular_polygon_body(const std::string& id, std::size_t n) {
+  std::string vertices;
+  char buf[64];
+  for (std::size_t k = 0; k < n; ++k) {
+    const double angle = 2 * M_PI * double(k) / double(n);
+    std::snprintf(buf, sizeof buf, "%s[%.17g, %.17g]", k ? ", " : "", std::cos(angle), std::sin(angle));
+    vertices += buf;
+  }
+  return R"({"id": ")" + id + R"(", "polygon": {"vertices": [)" + vertices + R"(]}, "position": [5, 0], "mass": 1})";
+}
+
+// Feature indices are 16-bit and a prediction tests every vertex of one polygon against every
+// edge of the other, so a polygon has at most kMaxPolygonVertices vertices (constants.hpp). One
+// more is a bad scene, one line naming the body and the field (before the limit a 70,000-gon
+// read fine and reported wrong edges); the limit itself reads.
+TEST(SceneErrors, PolygonPastTheVertexLimit) {
+  EXPECT_EQ(parse_scene(scene_with_body(regular_polygon_body("round", kMaxPolygonVertices)), kOrigin)
+                .scene.bodies[0]
+                .vertices.size(),
+            kMaxPolygonVertices);
+  const SceneError e = parse_error(scene_with_bodies(kBall + ",\n" + regular_polygon_body("huge", kMaxPolygonVertices + 1)),
+                                   "huge", "polygon.vertices",
+                                   "has " + std::to_string(kMaxPolygonVertices + 1) + " vertices: at most " +
+                                       std::to_string(kMaxPolygonVertices));
+  EXPECT_EQ(e.body_index(), 1);
+  EXPECT_EQ(e.line(), 2);
 }
 
 TEST(SceneErrors, DegenerateSegment) {

@@ -62,7 +62,7 @@ std::optional<PredictedContact<T>> circle_polygon_contact(SolverKind solver, con
                                                           const Vec2<T>& poly_p, const T& horizon, bool polygon_first) {
   std::optional<PredictedContact<T>> best;
   auto offer = [&](const T& t, ContactKind kind, std::size_t feature, bool overlap) {
-    const auto f = static_cast<std::uint16_t>(feature);
+    const std::uint16_t f = feature_index(feature);
     keep_earliest(best, PredictedContact<T>{t, kind, polygon_first ? f : std::uint16_t(0),
                                             polygon_first ? std::uint16_t(0) : f, overlap});
   };

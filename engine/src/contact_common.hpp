@@ -9,10 +9,26 @@
 #include "pge/roots.hpp"
 #include "pge/vec2.hpp"
 
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 namespace pge {
+
+// Feature indices are 16-bit (pge/event.hpp). validate_scene refuses polygons of more than
+// kMaxPolygonVertices vertices, so every vertex and edge index fits; feature_index narrows a
+// loop index and throws rather than wrap if that promise is ever broken (a 70,000-gon once
+// reported its edge 68,055 as 2,519). It runs once per contact offered, not per pair tested.
+static_assert(kMaxPolygonVertices - 1 <= std::numeric_limits<std::uint16_t>::max(),
+              "every vertex and edge index of a polygon must fit a 16-bit feature index");
+inline std::uint16_t feature_index(std::size_t k) {
+  if (k >= kMaxPolygonVertices)
+    throw std::logic_error("feature index " + std::to_string(k) + " past kMaxPolygonVertices");
+  return static_cast<std::uint16_t>(k);
+}
 
 template <class T> struct PredictedContact {
   T time;  // relative to the instant of the kinematics

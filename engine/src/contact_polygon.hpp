@@ -211,7 +211,7 @@ void scan_vertex_edge(SolverKind solver, const OutlineView<T>& o, ContactKind ki
       const StartRule rule = real ? StartRule::OverlapCollides : StartRule::CrossingsOnly;
       const auto hit = vertex_edge_contact(solver, o, k, j, rule, scale, horizon);
       if (!hit) continue;
-      const auto vk = static_cast<std::uint16_t>(k), ej = static_cast<std::uint16_t>(j);
+      const std::uint16_t vk = feature_index(k), ej = feature_index(j);
       const bool p_is_a = kind == ContactKind::VertexEdge;
       keep_earliest(best, PredictedContact<T>{hit->t, kind, p_is_a ? vk : ej, p_is_a ? ej : vk, hit->overlap,
                                               hit->corner});

@@ -79,6 +79,9 @@ std::optional<SceneProblem> check_body(const BodyDesc& b, int i) {
       const auto& v = b.vertices;
       const std::size_t n = v.size();
       if (n < 3) return problem("polygon.vertices", "needs at least 3 vertices, got " + std::to_string(n));
+      if (n > kMaxPolygonVertices)
+        return problem("polygon.vertices", "has " + std::to_string(n) + " vertices: at most " +
+                                               std::to_string(kMaxPolygonVertices) + " (constants.hpp, kMaxPolygonVertices)");
       for (std::size_t k = 0; k < n; ++k)
         if (!finite2(v[k])) return problem("polygon.vertices[" + std::to_string(k) + "]", "must be finite");
       for (std::size_t k = 0; k < n; ++k)

@@ -1,7 +1,24 @@
 #include "features.hpp"
 
+#include "pge/constants.hpp"
+
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
 namespace pge::oracle::detail {
 namespace {
+
+// Feature indices are 16-bit (FeaturePair); scenes hold at most kMaxPolygonVertices vertices per
+// polygon (validate_scene), so every index fits, and one that did not would be a bug, not a wrap.
+static_assert(kMaxPolygonVertices - 1 <= std::numeric_limits<std::uint16_t>::max(),
+              "every vertex and edge index of a polygon must fit a 16-bit feature index");
+std::uint16_t feature_index(int k) {
+  if (k < 0 || static_cast<std::size_t>(k) >= kMaxPolygonVertices)
+    throw std::logic_error("oracle: feature index " + std::to_string(k) + " outside [0, kMaxPolygonVertices)");
+  return static_cast<std::uint16_t>(k);
+}
 
 using Body = BodyModel<Dyadic>;
 
@@ -11,7 +28,7 @@ int edge_count(const Body& b) {
 }
 
 FeaturePair named(ContactKind kind, int a_feature, int b_feature) {
-  return {kind, static_cast<std::uint16_t>(a_feature), static_cast<std::uint16_t>(b_feature)};
+  return {kind, feature_index(a_feature), feature_index(b_feature)};
 }
 
 // The side of the edge line (direction e) that body x lies on, seen from its vertex v: +1 along

@@ -139,6 +139,20 @@ namespace pge {
 inline constexpr std::size_t kMaxBodiesWithoutBroadPhase = 100000;
 inline constexpr std::size_t kMaxBodies = 1000000;
 
+// Vertices of one polygon, at most. Predicting a pair of polygons tests every vertex of each
+// against every edge of the other (engine/src/contact_polygon.hpp): 2 n m quadratics, about
+// 20 ns each. Measured (pge run, robust, double, two moving regular n-gons passing 1e-7 inside
+// their bounding circles, which makes exactly one prediction of the pair): one prediction takes
+// 0.04 to 0.08 s at n = m = 1024, 0.26 s at 2048 and 1.6 to 1.9 s at 4096 (run time less that
+// of the same scene ending before the pair can meet; the cost grows faster than n^2 once the
+// pair's data leaves the cache); a collision of two polygons costs a few
+// predictions, and two 100,000-gons took 40 minutes. 1024 keeps one prediction well under a
+// tenth of a second; a body rounder than that is better modelled as a circle. The limit also
+// keeps every feature index (a vertex or edge number, below n) inside the 16-bit feature
+// fields of pge/event.hpp: a 70,000-gon had reported its edge 68,055 as 2,519. validate_scene
+// refuses a larger polygon (field "polygon.vertices").
+inline constexpr std::size_t kMaxPolygonVertices = 1024;
+
 // BroadPhase::Auto uses the grid from this many moving bodies on. Measured (bench_scale,
 // gas_grid/N against gas_all_pairs/N, robust, double): the grid is already faster at 16 discs
 // (8.6 against 9.3 us per event) and at 128 twice as fast; smaller scenes keep all pairs, where

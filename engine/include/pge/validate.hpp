@@ -16,8 +16,9 @@ struct SceneProblem {
 
 // The first problem found, in body order, or nothing when the scene is valid:
 // positive finite radius and mass, non-degenerate segments, convex counter-clockwise polygons
-// without repeated or collinear vertices, restitution in [0, 1], no two bodies overlapping at
-// the start (beyond kStartOverlapTolerance), a positive finite run horizon.
+// of at most kMaxPolygonVertices vertices without repeated or collinear vertices, restitution in
+// [0, 1], no two bodies overlapping at the start (beyond kStartOverlapTolerance), a positive
+// finite run horizon.
 std::optional<SceneProblem> validate_scene(const Scene& scene);
 
 }  // namespace pge
