@@ -3,6 +3,8 @@
 // momentum across every collision and kinetic energy across every elastic one (the checks
 // `pge fuzz` and the libFuzzer targets apply, properties/invariants), and no crash or hang (the
 // run is bounded by the scene's until and max_events).
+// Each scene's expect block (how the run ends, agreement with the oracle, ...) is enforced by
+// `pge check`, in the CTest regression_expectations (tests/CMakeLists.txt), not here.
 #include "pge/constants.hpp"
 #include "pge/invariants.hpp"
 #include "pge/scene_io.hpp"
