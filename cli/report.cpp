@@ -9,6 +9,7 @@
 #include "pge/families.hpp"
 #include "pge/peers.hpp"
 #include "pge/generators.hpp"
+#include "pge/hash.hpp"
 #include "pge/report_page.hpp"
 #include "pge/scene_io.hpp"
 #include "pge/world.hpp"
@@ -312,6 +313,14 @@ bool elastic(const Scene& scene) {
   return true;
 }
 
+// What the gate compares a row's scene by: FNV-1a over the scene file's canonical text, so an edited
+// fixture or a changed generator is told from a physics change.
+std::string scene_fingerprint(const Scene& scene) {
+  StateHasher h;
+  for (const unsigned char c : write_scene(scene)) h.add_word(c);
+  return fmt::format("{:016x}", h.value());
+}
+
 Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
   Row row;
   row.kind = it.kind;
@@ -324,6 +333,7 @@ Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
         row.scene = it.scene->name;
         row.bodies = it.scene->loaded.scene.bodies.size();
         row.elastic = elastic(it.scene->loaded.scene);
+        row.scene_hash = scene_fingerprint(it.scene->loaded.scene);
         measure_accuracy(row, *it.scene, s);
         break;
       case RowKind::Scaling: {
@@ -332,6 +342,7 @@ Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
         const std::uint64_t events = std::max<std::uint64_t>(5000, 10ull * it.bodies);
         const Scene scene = make_gas(gas_params(it.bodies, events, seed));
         row.bodies = scene.bodies.size();
+        row.scene_hash = scene_fingerprint(scene);
         time_row(row, scene, solver_of(row.solver, s), events, s);
         break;
       }
@@ -340,6 +351,7 @@ Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
         row.scene = it.scene->name;
         row.bodies = it.scene->loaded.scene.bodies.size();
         row.elastic = elastic(it.scene->loaded.scene);
+        row.scene_hash = scene_fingerprint(it.scene->loaded.scene);
         if (!it.scene->reference) it.scene->reference = peers::reference_positions(it.scene->loaded.scene, -1);
         peers::Setting setting = it.setting;
         if (setting.engine == "pge" && s.fast_solver) setting.solver = "fast";
@@ -360,6 +372,7 @@ Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
         row.scene = fmt::format("gas-{}-drift", it.bodies);
         const Scene scene = make_gas(gas_params(it.bodies, s.drift_events, seed));
         row.bodies = scene.bodies.size();
+        row.scene_hash = scene_fingerprint(scene);
         const Timed t = run_any(scene, row.scalar, solver_of(row.solver, s), -1, s.drift_events, s.drift_samples);
         row.repeats = 1;
         row.wall_seconds = row.wall_min_seconds = t.seconds;

@@ -151,6 +151,14 @@ GateResult gate(const Results& baseline, const Results& results, const GatePolic
     }
     matched[b.key()] = true;
     const Row& r = *it->second;
+    // The same name on another scene (an edited fixture, a changed generator) compares nothing.
+    if (!b.scene_hash.empty() && !r.scene_hash.empty() && b.scene_hash != r.scene_hash) {
+      g.check("results", fmt::format("{} ({}): same scene", where, b.config()), false,
+              fmt::format("the scene is not the baseline's (hash {}, baseline {}): it was edited or its generator "
+                          "changed; make a new baseline on purpose (pge gate --update) with that change",
+                          r.scene_hash, b.scene_hash));
+      continue;
+    }
     if (b.kind == RowKind::Peer) continue;  // Box2D and Chipmunk for comparison: not PGE's to gate
     if (!b.error.empty()) {
       g.out.notes.push_back(fmt::format("{} ({}): the baseline run failed ({}); not gated", where, b.config(), b.error));

@@ -51,7 +51,7 @@ json jnum(double x) {
 }
 
 json row_json(const Row& r) {
-  json j{{"kind", row_kind_name(r.kind)}, {"family", r.family}, {"scene", r.scene}, {"solver", r.solver},
+  json j{{"kind", row_kind_name(r.kind)}, {"family", r.family}, {"scene", r.scene}, {"scene_hash", r.scene_hash}, {"solver", r.solver},
          {"scalar", r.scalar}, {"bodies", r.bodies}, {"events", r.events}, {"predictions", r.predictions},
          {"stop", r.stop}, {"error", r.error}, {"elastic", r.elastic}, {"judged_events", r.judged_events}, {"misses", r.misses},
          {"phantoms", r.phantoms}, {"misorders", r.misorders}, {"ulps_median", jnum(r.ulps_median)},
@@ -88,6 +88,7 @@ Row row_from(const json& j) {
   r.kind = parse_row_kind(j.at("kind").get<std::string>());
   r.family = j.at("family").get<std::string>();
   r.scene = j.at("scene").get<std::string>();
+  r.scene_hash = j.value("scene_hash", std::string());  // absent in reports made before it existed
   r.solver = j.at("solver").get<std::string>();
   r.scalar = j.at("scalar").get<std::string>();
   r.bodies = j.at("bodies").get<std::uint64_t>();

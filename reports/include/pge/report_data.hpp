@@ -42,6 +42,7 @@ RowKind parse_row_kind(const std::string& name);  // throws ReportError
 struct Row {
   RowKind kind = RowKind::Accuracy;
   std::string family, scene, solver, scalar;
+  std::string scene_hash;  // FNV-1a of the scene's canonical text (16 hex digits; empty: not recorded)
   std::uint64_t bodies = 0;
   std::uint64_t events = 0;       // contact events of the timed run (collisions and grazes)
   std::uint64_t predictions = 0;  // pair predictions of the timed run
