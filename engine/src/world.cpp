@@ -221,14 +221,19 @@ template <class T> struct World<T>::Impl {
   // Two circles that pass within rounding of touching: predicted from the exact paths
   // (refine.hpp). Counted in counts.exact_predictions.
   // `overlapping`: whether the pair overlaps exactly at `now`.
-  std::optional<PredictedContact<T>> exact_circle_prediction(const Body& a, const Body& b, bool& overlapping) {
+  // `turns`: decide the turning-overlap rule too (an overlapping, receding pair), as
+  // refine_near_top does for a contact the rule scheduled.
+  std::optional<PredictedContact<T>> exact_circle_prediction(const Body& a, const Body& b, bool& overlapping,
+                                                             bool turns = false) {
     ++counts.exact_predictions;
     detail::exact::IntPoly poly = refine::exact_circle_poly(exact_of(a), exact_of(b), refine::Exact::of(now));
     overlapping = poly.c[0] < 0;
     // Overlapping and receding (not decreasing at now): no crossing now, and whatever follows
     // belongs to the turning-overlap rule or to a later crossing, which the rounded prediction
-    // handles (the callers fall back to it); skip the Sturm chain, the costly part.
-    if (overlapping && detail::exact::sign_just_after(detail::exact::derivative(poly), detail::exact::Dyadic{}) >= 0)
+    // handles (the callers fall back to it, and refine_near_top decides it exactly once it is
+    // near the top); skip the Sturm chain, the costly part.
+    if (!turns && overlapping &&
+        detail::exact::sign_just_after(detail::exact::derivative(poly), detail::exact::Dyadic{}) >= 0)
       return std::nullopt;
     // Up to the refinement bound past the horizon: now + tau is rounded, and the exact time may
     // still be the horizon (refine_near_top rounds it once, from the exact paths).
@@ -244,14 +249,93 @@ template <class T> struct World<T>::Impl {
     return out;
   }
 
+  // The time of a turning-overlap contact of two circles (roots.hpp), the first local maximum
+  // of their exact contact polynomial after `now`: a crossing of its derivative from positive
+  // to negative, correctly rounded from the exact paths like every other event time.
+  std::optional<T> refined_turn(const Scheduled<T>& s, const T& predicted) const {
+    struct SlopeSign {
+      detail::exact::IntPoly slope;
+      refine::Exact now;
+      int exact(const refine::Exact& t) const { return detail::exact::sign_at(slope, (t - now).d); }
+      int operator()(const T& t, const T& dt = T(0)) const {
+        return exact(dt == T(0) ? refine::Exact::of(t) : refine::Exact::of(t) + refine::Exact::of(dt));
+      }
+    };
+    const refine::Exact t_now = refine::Exact::of(now);
+    SlopeSign sign{detail::exact::derivative(refine::exact_circle_poly(exact_of(bodies[s.lo]), exact_of(bodies[s.hi]), t_now)),
+                   t_now};
+    return refine::correctly_rounded_crossing(predicted, now, sign);
+  }
+
+  // The turning-overlap rule's contact of two circles, decided without the exact solver where
+  // it can be: in a storm of a pair pressed together (each contact leaves it overlapping by
+  // round-off and receding at rounding speed, and the Sturm chains cost 2 ms a contact) the
+  // contact function P(tau) of the exact paths is concave from 0 to just past its turn. With
+  //   P(0) < 0 and P'(0) > 0 (overlapping, receding), the turn's correctly rounded time m from
+  //   P''s crossing nearest `hint` (refined_turn), tau1 = the next T after m, minus now,
+  //   P'(tau1) <= 0 and P'' < 0 on [0, tau1] (bounded above by its Taylor terms at 0),
+  // P' falls on [0, tau1] and has one root there, the first maximum of P, and P stays below
+  // P(0) + P'(0) tau1 up to it: if that is negative the pair turns back overlapping, at m.
+  // Every test is an exact sign; nothing when one fails (the exact solver decides).
+  std::optional<T> concave_turn(const Scheduled<T>& r, const T& hint) const {
+    using refine::Exact;
+    const Exact t_now = Exact::of(now);
+    const detail::exact::IntPoly poly = refine::exact_circle_poly(exact_of(bodies[r.lo]), exact_of(bodies[r.hi]), t_now);
+    if (poly.degree < 2 || !(poly.c[0] < 0) || !(poly.c[1] > 0)) return std::nullopt;
+    const std::optional<T> m = refined_turn(r, std::max(hint, now));
+    if (!m || !(*m >= now)) return std::nullopt;
+    const T after = boost::math::float_next(*m);
+    const Exact tau1 = Exact::of(after) - t_now;
+    if (detail::exact::sign_at(detail::exact::derivative(poly), tau1.d) > 0) return std::nullopt;
+    const auto coefficient = [&](int k) { return Exact(refine::Dyadic{poly.c[k], 0}); };
+    const auto magnitude = [&](int k) { return Exact(refine::Dyadic{poly.c[k] < 0 ? -poly.c[k] : poly.c[k], 0}); };
+    // P''(tau) <= 2 c2 + 6 |c3| tau1 + 12 |c4| tau1^2 on [0, tau1].
+    Exact curvature = Exact(2) * coefficient(2);
+    Exact power = tau1;
+    for (int k = 3; k <= poly.degree; ++k) {
+      curvature = curvature + Exact(k * (k - 1)) * magnitude(k) * power;
+      power = power * tau1;
+    }
+    if (curvature.sign() >= 0) return std::nullopt;
+    if ((coefficient(0) + coefficient(1) * tau1).sign() >= 0) return std::nullopt;
+    return m;
+  }
+
+  // A contact of two circles decided again from their exact polynomial, the overlap and
+  // turning-overlap rules included, its time rounded once from the exact paths (now + tau is
+  // rounded twice): r's time and overlap flag. False if the pair does not touch before the
+  // refinement bound.
+  bool exact_circle_contact(Scheduled<T>& r, const T& hint) {
+    if (const std::optional<T> t = concave_turn(r, hint)) {
+      r.at_start_overlap = true;
+      r.time = *t;
+      return true;
+    }
+    bool overlapping = false;
+    const auto c = exact_circle_prediction(bodies[r.lo], bodies[r.hi], overlapping, true);
+    if (!c) return false;
+    r.at_start_overlap = c->at_start_overlap;
+    r.time = c->time;
+    if (c->time > now) {
+      // A crossing, a turn found overlapping, or a turn exactly touching (a double root of the
+      // contact function: no crossing to find, the turn's time is its derivative's crossing).
+      std::optional<T> u = c->at_start_overlap ? std::nullopt : refined_time(r);
+      if (!u && overlapping) u = refined_turn(r, c->time);
+      if (u) r.time = std::max(now, *u);
+    }
+    return true;
+  }
+
   // Exact times for certified events (refine.hpp). A prediction from the rounded state can be
   // off by hundreds of ulps, so the queue's order near its top is not the exact order: before
   // the top event is processed, it and every unrefined contact scheduled within
   // kRefineWindowRelative of it are re-derived exactly (a contact whose partner has changed is
   // predicted again instead). Returns true if anything changed (the caller merges again).
   // Overlap-rule contacts at `now` are checked too (the rounded state may overlap where the
-  // exact paths are still an ulp apart); the turning-overlap rule's time (later than now) is a
-  // turning point, not a crossing, and keeps its time.
+  // exact paths are still an ulp apart). The turning-overlap rule's contact (later than now) of
+  // two circles is decided again from the exact polynomial and its turning point correctly
+  // rounded (refined_turn); of other pairs it is a turning point of the rounded prediction and
+  // keeps its time (issue 23: not yet re-derived exactly).
   // The latest time whose contacts may be exactly as early as t (kRefineWindowRelative).
   static T refine_bound(const T& t) {
     using std::abs;
@@ -275,39 +359,27 @@ template <class T> struct World<T>::Impl {
       }
       Scheduled<T> r = s;
       r.refined = true;
-      if (!s.at_start_overlap || s.time <= now) {
+      // Two circles the rounded state may have misjudged: the exact paths do not cross near
+      // the predicted time, or already touch at `now` (where only an approaching pair
+      // collides: the rounded state may have invented the contact, a pair left overlapping by
+      // one rounding and receding exactly), or the contact is the turning-overlap rule's, a
+      // turning point of the rounded prediction. They are predicted again from the exact
+      // polynomial, both overlap rules included; if they never touch, the owner's next
+      // contact is scheduled instead.
+      bool again = s.contact == ContactKind::CircleCircle && s.at_start_overlap && s.time > now;
+      if (!again) {
         const std::optional<T> t = refined_time(s);
-        if (t && (*t > now || s.contact != ContactKind::CircleCircle)) {
-          r.time = std::max(now, *t);
-        } else if (s.contact == ContactKind::CircleCircle) {
-          // The exact paths do not cross near the predicted time, or already touch at `now`
-          // (where only an approaching pair collides): the rounded state may have invented the
-          // contact (a pair left overlapping by one rounding and receding exactly). Two circles
-          // are predicted again from the exact polynomial, overlap rule included; if they never
-          // touch, the owner's next contact is scheduled instead.
-          Body& x = bodies[i];
-          const Body& y = bodies[s.partner];
-          bool overlapping = false;
-          const auto c = exact_circle_prediction(bodies[s.lo], bodies[s.hi], overlapping);
-          if (c) {
-            r.at_start_overlap = c->at_start_overlap;
-            r.time = now;
-            if (!c->at_start_overlap) {  // now + tau, rounded twice: round the exact crossing once
-              r.time = c->time;
-              if (const std::optional<T> u = refined_time(r)) r.time = std::max(now, *u);
-            }
-          } else if (!overlapping || relative_acc_zero(bodies[s.lo], bodies[s.hi])) {
-            // Never touching, or overlapping and receding with no relative acceleration to turn
-            // it back (a convex parabola only rises): no contact at all.
-            x.no_contact_with = s.partner;
-            x.no_contact_version = x.version;
-            x.no_contact_partner_version = y.version;
-            reschedule(i);
-            continue;
-          }
-          // Overlapping exactly and receding under a relative acceleration: the turning-overlap
-          // rule's contact (roots.hpp), which only the rounded prediction knows, keeps its time.
-        }
+        if (t && (*t > now || s.contact != ContactKind::CircleCircle)) r.time = std::max(now, *t);
+        else again = s.contact == ContactKind::CircleCircle;
+      }
+      if (again && !exact_circle_contact(r, s.time)) {
+        Body& x = bodies[i];
+        const Body& y = bodies[s.partner];
+        x.no_contact_with = s.partner;
+        x.no_contact_version = x.version;
+        x.no_contact_partner_version = y.version;
+        reschedule(i);
+        continue;
       }
       heap.set(i, r);
     }

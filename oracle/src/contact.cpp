@@ -50,6 +50,49 @@ bool counts(const ContactPolys<Dyadic>& c, Place place, const RealRoot& r, const
   return corner_enters(r, place == Place::End0 ? 0 : 1);
 }
 
+// The real roots of p with the sign p has just after each (between consecutive roots p keeps
+// one sign; after the last it has the sign of the leading coefficient, and each root of odd
+// multiplicity flips it going left).
+struct SignedRoots {
+  std::vector<RootWithMultiplicity> roots;
+  std::vector<int> sign_after;
+};
+SignedRoots signed_roots(const Poly<Dyadic>& p, int top) {
+  SignedRoots out;
+  out.roots = real_roots(to_int_poly(p));
+  out.sign_after.resize(out.roots.size());
+  int sign = p.c[top].sign();
+  for (std::size_t k = out.roots.size(); k-- > 0;) {
+    out.sign_after[k] = sign;
+    if (out.roots[k].multiplicity % 2 == 1) sign = -sign;
+  }
+  return out;
+}
+
+// The turning-overlap rule (DESIGN.md; the engine's StartRule::OverlapCollides, roots.hpp): f
+// overlapping at 0 and rising. The first local maximum of f in (0, tau_hi] (the first root of
+// f' where f' goes from positive to negative) is a contact if f is not positive there: the pair
+// turns back while still overlapping (f < 0) or exactly touching (f = 0) instead of separating.
+// f(m) is decided exactly, at the algebraic root m of f'.
+struct Turn {
+  RootHandle tau;
+  int sign_at_max = 0;
+};
+std::optional<Turn> first_turn(const Poly<Dyadic>& f, int top, const Dyadic& tau_hi) {
+  if (top < 2) return std::nullopt;  // a line never turns
+  const Poly<Dyadic> slope = derivative(f);
+  const SignedRoots s = signed_roots(slope, top - 1);
+  const RootHandle zero = root_at(Dyadic());
+  for (std::size_t k = 0; k < s.roots.size(); ++k) {
+    const RealRoot& r = *s.roots[k].root;
+    if (compare(r, *zero) <= 0) continue;
+    if (compare(r, tau_hi) > 0) break;
+    if (s.roots[k].multiplicity % 2 == 0 || s.sign_after[k] > 0) continue;  // not a maximum
+    return Turn{s.roots[k].root, sign_at(to_int_poly(f), r)};
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 IntPoly to_int_poly(const Poly<Dyadic>& p) {
@@ -88,16 +131,13 @@ std::optional<Contact> earliest_contact(const ContactPolys<Dyadic>& c, const Dya
       return Contact{zero, at_zero < 0};
   }
   if (top == 0) return std::nullopt;
+  if (at_zero < 0 && first_derivative_sign(c.f) > 0)
+    if (const std::optional<Turn> turn = first_turn(c.f, top, tau_hi); turn && turn->sign_at_max <= 0)
+      if (place_at(c, *turn->tau) != Place::Off && overlap_applies()) return Contact{turn->tau, turn->sign_at_max < 0};
 
-  const std::vector<RootWithMultiplicity> roots = real_roots(to_int_poly(c.f));
-  // Between consecutive real roots f keeps one sign; after the last it has the sign of the
-  // leading coefficient, and each root of odd multiplicity flips it going left.
-  std::vector<int> sign_after(roots.size());
-  int sign = c.f.c[top].sign();
-  for (std::size_t k = roots.size(); k-- > 0;) {
-    sign_after[k] = sign;
-    if (roots[k].multiplicity % 2 == 1) sign = -sign;
-  }
+  const SignedRoots s = signed_roots(c.f, top);
+  const std::vector<RootWithMultiplicity>& roots = s.roots;
+  const std::vector<int>& sign_after = s.sign_after;
   for (std::size_t k = 0; k < roots.size(); ++k) {
     const RealRoot& r = *roots[k].root;
     if (compare(r, *zero) <= 0) continue;  // tau = 0 was decided above

@@ -11,7 +11,7 @@ namespace pge::oracle::detail {
 
 struct Contact {
   RootHandle tau;             // time since the frame's `now`
-  bool overlap_rule = false;  // at tau = 0, found overlapping and approaching
+  bool overlap_rule = false;  // found overlapping: at tau = 0 and approaching, or at a turn
 };
 
 // The integer polynomial with the same roots and signs (scaled by a positive power of two).
@@ -20,6 +20,9 @@ IntPoly to_int_poly(const Poly<Dyadic>& p);
 // The earliest tau in [0, tau_hi] at which the feature pair collides (DESIGN.md):
 //   at tau = 0: f(0) <= 0 and approaching (the first non-zero derivative negative), on the
 //     feature; if f(0) < 0 this is the overlap rule and also needs `overlap_applies()`;
+//   the turning-overlap rule: f(0) < 0 and rising, and f not positive at its first local
+//     maximum m in (0, tau_hi] (the pair turns back before it separates): a contact at m, on
+//     the feature at m and with `overlap_applies()`, found overlapping if f(m) < 0;
 //   after 0: a root where f crosses from positive to negative (odd multiplicity, negative just
 //     after; a double root touching zero is a graze), on the feature at the root.
 // "On the feature" is decided by exact signs at the root: the projection in [0, e.e] for edge

@@ -30,7 +30,7 @@ struct FeaturePair {
 struct PairContact {
   BodyIndex a = kNoBody, b = kNoBody;
   std::vector<FeaturePair> features;
-  bool overlap_rule = false;  // found overlapping and approaching at the search's start
+  bool overlap_rule = false;  // found overlapping: approaching at the search's start, or turning back (contact.hpp)
 };
 
 // The exact next event from a state: none before the horizon when `time` is empty.
