@@ -3,11 +3,13 @@
 # configurations, every part (the peers part on the head-on compare scene), it references nothing
 # outside itself, its plots are well-formed SVG from gnuplot, the peers part has PGE's rows in every
 # solver x scalar asked for, and headless Chromium loads it with no console error, exception or
-# failed load (tests/tools/html_console_check.sh; exit 77, a skip, only where Chromium is not
-# installed).
-# Usage: report_page.sh PGE FIXTURES_DIR CHECKER
+# failed load (tests/tools/html_console_check.sh), and in Chromium's layout every chart is there
+# and no label overlaps another or is cut off (tests/tools/report_layout_check.sh: the peers
+# chart's settings of nearly the same speed and drift wrote their labels over one another). Exit
+# 77, a skip, only where Chromium is not installed.
+# Usage: report_page.sh PGE FIXTURES_DIR CHECKER [LAYOUT_CHECKER]
 set -u
-pge=$1; fixtures=$2; checker=$3
+pge=$1; fixtures=$2; checker=$3; layout=${4:-$(dirname "$checker")/report_layout_check.sh}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
@@ -40,4 +42,5 @@ for svg in "$out"/r/plots/family-*.svg; do  # pge render's pictures of the fixtu
   python3 -c 'import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])' "$svg" || fail "$svg is not well-formed"
 done
 [[ -e $out/r/plots/family-basics.svg && -e $out/r/plots/family-random.svg ]] || fail "a family has no picture"
-"$checker" "$page"
+"$checker" "$page" || exit $?
+"$layout" "$page"
