@@ -107,11 +107,27 @@ struct LogFrame {
   double py(double y) const {
     return kHeight * (1 - (kBottom + (kTop - kBottom) * (std::log10(y) - y_lo) / (y_hi - y_lo)));
   }
-  std::string margins() const {
-    return fmt::format("set lmargin at screen {}\nset rmargin at screen {}\nset bmargin at screen {}\nset tmargin at screen {}\n",
-                       kLeft, kRight, kBottom, kTop);
+  // The gnuplot commands that fix the frame (logscale xy, ranges, margins), and those that undo them.
+  std::string fixed() const {
+    return fmt::format("set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xrange [1e{}:1e{}]\n"
+                       "set yrange [1e{}:1e{}]\nset lmargin at screen {}\nset rmargin at screen {}\n"
+                       "set bmargin at screen {}\nset tmargin at screen {}\n",
+                       x_lo, x_hi, y_lo, y_hi, kLeft, kRight, kBottom, kTop);
   }
+  static constexpr const char* kUnfixed =
+      "unset logscale\nunset format\nunset label\nunset arrow\nset xrange [*:*]\nset yrange [*:*]\n"
+      "set lmargin\nset rmargin\nset tmargin\nset bmargin\n";
 };
+
+// The whole decades around the positive values, with `room` decades at least at either end.
+std::pair<int, int> decades(const std::vector<double>& values, double room = 0.15) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const double v : values)
+    if (v > 0 && std::isfinite(v)) lo = std::min(lo, std::log10(v)), hi = std::max(hi, std::log10(v));
+  if (!(lo <= hi)) lo = hi = 0;
+  const int from = static_cast<int>(std::floor(lo - room));
+  return {from, std::max(static_cast<int>(std::ceil(hi + room)), from + 1)};
+}
 
 struct Box {
   double x0, y0, x1, y1;
@@ -122,15 +138,15 @@ struct Box {
 // (estimated from the font: an average glyph of a sans-serif font is about 0.55 em wide; 0.62
 // leaves room) meets no other label, no point and not the frame: beside the point first, then on
 // rings further out, joined to the point by a thin leader line. Labels go in order of x, so that
-// a row of close points fans out to one side.
-std::string place_labels(std::vector<PointLabel> labels, const LogFrame& f) {
-  constexpr double kFont = 8, kGlyph = 0.62 * kFont, kLine = 1.3 * kFont, kPoint = 7, kPad = 1.5;
+// a row of close points fans out to one side. point: the half-size of a point's marker, pixels.
+std::string place_labels(std::vector<PointLabel> labels, const LogFrame& f, double point = 7) {
+  constexpr double kFont = 8, kGlyph = 0.62 * kFont, kLine = 1.3 * kFont, kPad = 1.5;
   std::stable_sort(labels.begin(), labels.end(), [](const PointLabel& a, const PointLabel& b) { return a.x < b.x; });
   const Box inside{f.px(std::pow(10.0, f.x_lo)) + 2, f.py(std::pow(10.0, f.y_hi)) + 2, f.px(std::pow(10.0, f.x_hi)) - 2,
                    f.py(std::pow(10.0, f.y_lo)) - 2};
   std::vector<Box> taken;
   for (const PointLabel& l : labels)
-    taken.push_back({f.px(l.x) - kPoint, f.py(l.y) - kPoint, f.px(l.x) + kPoint, f.py(l.y) + kPoint});
+    taken.push_back({f.px(l.x) - point, f.py(l.y) - point, f.px(l.x) + point, f.py(l.y) + point});
   std::string out;
   const auto screen = [&](double x, double y) {
     return fmt::format("screen {:.5f}, screen {:.5f}", x / LogFrame::kWidth, 1 - y / LogFrame::kHeight);
@@ -139,8 +155,9 @@ std::string place_labels(std::vector<PointLabel> labels, const LogFrame& f) {
     if (l.text.empty()) continue;
     const double x = f.px(l.x), y = f.py(l.y), w = kGlyph * static_cast<double>(l.text.size());
     // Candidate anchors (the label's left end, its vertical middle), nearest first.
-    std::vector<std::pair<double, double>> at{{x + 9, y}, {x + 6, y - 11}, {x + 6, y + 11}, {x - 9 - w, y},
-                                              {x - w / 2, y - 14}, {x - w / 2, y + 14}};
+    const double near = point + 2;
+    std::vector<std::pair<double, double>> at{{x + near, y},          {x + near - 3, y - near - 4}, {x + near - 3, y + near + 4},
+                                              {x - near - w, y},      {x - w / 2, y - near - 7},    {x - w / 2, y + near + 7}};
     for (int ring = 2; ring <= 12; ++ring)
       for (int k = 0; k < 16; ++k) {
         const double angle = -M_PI / 2 + 2 * M_PI * k / 16, r = 12.0 * ring;
@@ -178,10 +195,15 @@ Plots make_plots(const Results& r, const std::vector<ConfigSummary>& configs, co
   if (!configs.empty()) {
     std::string points, front, failing;
     std::vector<const ConfigSummary*> pareto;
+    std::vector<PointLabel> labels;
+    std::vector<double> xs, ys;
     for (const ConfigSummary& c : configs) {
       if (c.events == 0 || c.wall_seconds <= 0) continue;
       const double ns = 1e9 * c.wall_seconds / static_cast<double>(c.events);
       const std::string line = fmt::format("{} {} \"{}/{}\"\n", g(ns), g(on_log(c.rel_p99)), c.solver, c.scalar);
+      labels.push_back({ns, on_log(c.rel_p99), c.solver + "/" + c.scalar});
+      xs.push_back(ns);
+      ys.push_back(on_log(c.rel_p99));
       points += line;
       if (c.misses + c.phantoms > 0) failing += line;
       if (c.pareto) pareto.push_back(&c);
@@ -193,19 +215,23 @@ Plots make_plots(const Results& r, const std::vector<ConfigSummary>& configs, co
     if (!points.empty()) {
       write_file(dir / "speed_error.dat", points);
       write_file(dir / "pareto.dat", front.empty() ? points.substr(0, points.find('\n') + 1) : front);
+      // Labels placed as on the peers chart (place_labels): a solver's scalars can sit close.
+      const auto [x_lo, x_hi] = decades(xs);
+      const auto [y_lo, y_hi] = decades(ys, 0.5);
+      const LogFrame frame{x_lo, x_hi, y_lo, y_hi};
       s += kTerminal;
-      s += "set output 'speed_error.svg'\nset logscale xy\nset format y '10^{%L}'\n"
+      s += "set output 'speed_error.svg'\n" + frame.fixed() + place_labels(labels, frame, 12) +
            "set xlabel 'time per event, ns (engine alone, median of repeats; log)'\n"
            "set ylabel 'p99 relative time error (log; exact at 1e-40)'\n"
            "set title 'Speed against error: one point per solver x scalar'\n"
            "plot 'pareto.dat' using 1:2 with linespoints lw 2 pt 6 ps 2.4 lc rgb '#ff7f0e' title 'Pareto front', \\\n"
-           "     'speed_error.dat' using 1:2 with points pt 7 ps 1.3 lc rgb '#1f77b4' title 'configuration', \\\n"
-           "     'speed_error.dat' using 1:2:3 with labels offset char 1,0.6 left font ',9' notitle";
+           "     'speed_error.dat' using 1:2 with points pt 7 ps 1.3 lc rgb '#1f77b4' title 'configuration'";
       if (!failing.empty()) {
         write_file(dir / "speed_error_miss.dat", failing);
         s += ", \\\n     'speed_error_miss.dat' using 1:2 with points pt 2 ps 2.2 lc rgb 'black' title 'misses or phantoms'";
       }
-      s += "\nunset title\nunset logscale\nunset format\n";
+      s += "\nunset title\n";
+      s += LogFrame::kUnfixed;
       p.files.push_back("speed_error.svg");
     }
   }
@@ -293,15 +319,15 @@ Plots make_plots(const Results& r, const std::vector<ConfigSummary>& configs, co
       // where it overlaps no other label and no point (gnuplot's `with labels` puts every label at
       // the same offset from its point, and a dozen settings of nearly the same speed and drift
       // wrote over one another).
-      double lo = INFINITY, hi = -INFINITY;
-      for (const auto& [stem, one] : series)
-        for (const PointLabel& l : one.labels)
-          if (l.x > 0) lo = std::min(lo, std::log10(l.x)), hi = std::max(hi, std::log10(l.x));
-      if (!(lo <= hi)) lo = hi = 0;
-      const int x_lo = static_cast<int>(std::floor(lo - 0.15));
-      const LogFrame frame{x_lo, std::max(static_cast<int>(std::ceil(hi + 0.15)), x_lo + 1), -42, 1};
       std::vector<PointLabel> all;
-      for (const auto& [stem, one] : series) all.insert(all.end(), one.labels.begin(), one.labels.end());
+      std::vector<double> walls;
+      for (const auto& [stem, one] : series)
+        for (const PointLabel& l : one.labels) {
+          all.push_back(l);
+          walls.push_back(l.x);
+        }
+      const auto [x_lo, x_hi] = decades(walls);
+      const LogFrame frame{x_lo, x_hi, -42, 1};
       std::string plot;
       for (const auto& [stem, one] : series) {
         write_file(dir / ("peers_" + stem + ".dat"), one.data);
@@ -313,14 +339,11 @@ Plots make_plots(const Results& r, const std::vector<ConfigSummary>& configs, co
         plot += ", \\\n  'peers_tunnelling.dat' using 1:2 with points pt 2 ps 2.2 lc rgb 'black' title 'a body tunnelled'";
       }
       s += kTerminal;
-      s += fmt::format("set output 'peers.svg'\nset logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\n"
-                       "set xrange [1e{}:1e{}]\nset yrange [1e{}:1e{}]\n{}{}",
-                       frame.x_lo, frame.x_hi, frame.y_lo, frame.y_hi, frame.margins(), place_labels(all, frame));
+      s += "set output 'peers.svg'\n" + frame.fixed() + place_labels(all, frame);
       s += "set xlabel 'wall time over the compare scenes, s (log)'\n"
            "set ylabel 'largest |energy drift| of an elastic scene (log; exact at 1e-40)'\n"
            "set title 'PGE against Box2D and Chipmunk: speed against energy error'\nplot " + plot +
-           "\nunset title\nunset logscale\nunset format\nunset label\nunset arrow\nset xrange [*:*]\nset yrange [*:*]\n"
-           "set lmargin\nset rmargin\nset tmargin\nset bmargin\n";
+           "\nunset title\n" + LogFrame::kUnfixed;
       p.files.push_back("peers.svg");
     }
   }
