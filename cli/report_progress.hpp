@@ -5,8 +5,11 @@
 #include "pge/report_data.hpp"
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace pge::cli {
@@ -30,13 +33,16 @@ class ReportProgress {
   };
   // quick: the sweep (it sets the prior cost of a row in a part not yet started).
   ReportProgress(ProgressStyle style, const std::vector<Planned>& plan, bool quick);
+  ~ReportProgress();
+  ReportProgress(const ReportProgress&) = delete;
+  ReportProgress& operator=(const ReportProgress&) = delete;
   // Before item k (0-based, in the order above) is measured; label: what it is.
   void begin(std::size_t k, const std::string& label);
   // After it was measured.
   void end();
   // Before anything else goes to stderr mid-sweep (an error line): clears the redrawn line.
   void interrupt();
-  // After the last item: clears the redrawn line.
+  // After the last item: stops the ticker, clears the redrawn line.
   void finish();
 
  private:
@@ -49,8 +55,9 @@ class ReportProgress {
   };
   double elapsed() const;
   double seconds_left() const;  // estimated, every part
-  double part_left(const Part& p) const;
+  double part_rate(const Part& p) const;  // estimated seconds per weight of its rows
   std::string part_line(const Part& p) const;
+  void draw();  // the redrawn line (Terminal), with mutex_ held
 
   ProgressStyle style_;
   bool quick_;
@@ -58,8 +65,15 @@ class ReportProgress {
   std::vector<std::size_t> part_of_;  // item -> index in parts_
   std::vector<double> weight_;        // item -> its weight
   std::size_t current_ = 0, done_ = 0;
-  Clock::time_point start_, item_start_, next_line_;
+  std::string label_;  // the row at work
+  Clock::time_point start_, item_start_, last_line_;
   bool drawn_ = false;
+  // The ticker thread redraws the terminal's line every second and prints a log's line every
+  // 30 s, also while one row takes long; mutex_ guards everything above against it.
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool stop_ = false;
+  std::thread ticker_;
 };
 
 // The headline numbers of a report, one line per solver x scalar: misses, phantoms and
