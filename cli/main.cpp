@@ -197,8 +197,13 @@ int main(int argc, char** argv) {
       "  several sizes, timed), drift (energy along one long gas run), peers (the pge compare scenes,\n"
       "  fixtures/scenes/peers, by PGE in every solver x scalar asked for and by Box2D and Chipmunk at\n"
       "  every setting; full report only, unless --parts names it). Quick: 500 events per scene, 12\n"
-      "  random scenes, gas at 100 and 1,000, a 20,000-event drift run (about 2 minutes). Full: 2,000\n"
-      "  events, 100 random scenes, gas up to 10,000, 200,000 events of drift.\n"
+      "  random scenes, gas at 100 and 1,000, a 20,000-event drift run (about 1 minute of CPU; 4\n"
+      "  minutes on 2 cores under heavy load). Full: 2,000 events, 100 random scenes, gas up to 10,000,\n"
+      "  200,000 events of drift.\n"
+      "Progress: on a terminal (or with --progress), one line redrawn in place: rows done, the part,\n"
+      "  time elapsed and an estimate of the time left; with --progress-lines, for logs, a line per part\n"
+      "  every 30 s and when it ends. At the end: the path of index.html and the headline numbers, a\n"
+      "  line per solver x scalar (misses, p99 and worst time error, worst ulps, events/s, Pareto).\n"
       "Sharding: --shard i/n runs every n-th item from i and writes results.json only; join the shards\n"
       "  with --merge DIR... --out DIR, which writes the pages.\n") + kExitCodeHelp);
   report_cmd->add_option("--out,-o", report.out, "Output directory")->capture_default_str();
@@ -231,7 +236,12 @@ int main(int argc, char** argv) {
                          "(every timed run does its work four times)")
       ->check(CLI::IsMember({"fast-solver", "slow"}));
   report_cmd->add_flag("--quiet,-q", report.quiet, "Print nothing but errors");
-  report_cmd->add_flag("--progress", report.progress, "Show progress on stderr (default: only when stderr is a terminal)");
+  report_cmd->add_flag("--progress", report.progress,
+                       "Show progress on stderr, redrawn in place: rows done, the part, time elapsed and left (default: "
+                       "only when stderr is a terminal)");
+  report_cmd->add_flag("--progress-lines", report.progress_lines,
+                       "Show progress for a log instead: a line per part every 30 s and when it ends (rows done, time "
+                       "elapsed and left)");
 
   GateOptions gate;
   CLI::App* gate_cmd = app.add_subcommand(
@@ -287,6 +297,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"accuracy", "scaling", "drift", "peers"}))
       ->delimiter(',');
   gate_cmd->add_flag("--progress", gate.report.progress, "Show the measuring's progress on stderr");
+  gate_cmd->add_flag("--progress-lines", gate.report.progress_lines,
+                     "Show the measuring's progress for a log: a line per part every 30 s and when it ends");
 
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand(

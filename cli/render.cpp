@@ -408,34 +408,73 @@ std::string polyline_points(const std::vector<Sample>& samples, const View& v) {
   return out;
 }
 
-// The legend line: a swatch and a word for each kind of mark.
-std::string legend(double x0, double y, double font) {
+// The width of a glyph of the caption's sans-serif font, on the wide side (DejaVu Sans, the usual
+// fallback, averages about 0.55 em), so that a caption laid out with it fits the picture.
+constexpr double kGlyphEm = 0.6;
+
+// `text` in lines of at most `chars` characters, broken at spaces (a longer word on its own line).
+std::vector<std::string> wrapped(const std::string& text, std::size_t chars) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    std::size_t end = text.find(' ', at);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(at, end - at);
+    if (!line.empty() && line.size() + 1 + word.size() > chars) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    at = end + 1;
+  }
+  if (!line.empty() || lines.empty()) lines.push_back(line);
+  return lines;
+}
+
+// The legend: a swatch and a word for each kind of mark, on as many lines of `line` pixels as
+// `width` pixels need; y is the first line's baseline, moved to the last's.
+std::string legend(double x0, double& y, double font, double line, double width) {
   std::string out;
   double x = x0;
   const double s = font * 0.8;  // swatch size
-  auto item = [&](const std::string& swatch, std::string_view word) {
-    out += swatch;
+  auto item = [&](const auto& swatch, std::string_view word) {
+    const double advance = s + 14 + font * kGlyphEm * static_cast<double>(word.size());
+    if (x > x0 && x + advance - 10 > width - x0) {
+      x = x0;
+      y += line;
+    }
+    out += swatch(x, y - s);
     out += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\">{}</text>\n", x + s + 4, y, word);
-    x += s + 14 + font * 0.52 * static_cast<double>(word.size());
+    x += advance;
   };
-  const double top = y - s;
-  item(fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" stroke=\"{}\"/>", x, top,
-                   s, s, kFixedFill, kFixedStroke),
+  item([&](double left, double top) {
+         return fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" stroke=\"{}\"/>", left,
+                            top, s, s, kFixedFill, kFixedStroke);
+       },
        "fixed body");
-  item(fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" fill-opacity=\"0.35\" "
-                   "stroke=\"{}\"/>",
-                   x, top, s, s, moving_color(0), moving_color(0)),
+  item([&](double left, double top) {
+         return fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" fill-opacity=\"0.35\" "
+                            "stroke=\"{}\"/>",
+                            left, top, s, s, moving_color(0), moving_color(0));
+       },
        "moving body at the start");
-  item(fmt::format("<path d=\"M{:.1f} {:.1f}L{:.1f} {:.1f}L{:.1f} {:.1f}\" fill=\"none\" stroke=\"{}\"/>", x, y,
-                   x + s / 2, top, x + s, y, moving_color(0)),
+  item([&](double left, double top) {
+         return fmt::format("<path d=\"M{:.1f} {:.1f}L{:.1f} {:.1f}L{:.1f} {:.1f}\" fill=\"none\" stroke=\"{}\"/>", left, top + s,
+                            left + s / 2, top, left + s, top + s, moving_color(0));
+       },
        "trajectory");
-  item(fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"{}\" "
-                   "stroke-dasharray=\"3 2\"/>",
-                   x, top, s, s, moving_color(0)),
+  item([&](double left, double top) {
+         return fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"{}\" "
+                            "stroke-dasharray=\"3 2\"/>",
+                            left, top, s, s, moving_color(0));
+       },
        "at the end");
-  item(fmt::format("<path d=\"M{:.1f} {:.1f}L{:.1f} {:.1f}M{:.1f} {:.1f}L{:.1f} {:.1f}\" stroke=\"{}\" "
-                   "stroke-width=\"1.5\"/>",
-                   x, top, x + s, y, x, y, x + s, top, kMarkColor),
+  item([&](double left, double top) {
+         return fmt::format("<path d=\"M{:.1f} {:.1f}L{:.1f} {:.1f}M{:.1f} {:.1f}L{:.1f} {:.1f}\" stroke=\"{}\" "
+                            "stroke-width=\"1.5\"/>",
+                            left, top, left + s, top + s, left, top + s, left + s, top, kMarkColor);
+       },
        "collision");
   return out;
 }
@@ -450,7 +489,22 @@ std::string svg_picture(const Run& run, const View& v, int width_px) {
   const int pic_h = picture_height_px(v, width_px);
   const double font = std::clamp(width_px / 60.0, 9.0, 13.0);
   const double line = 1.5 * font;
-  const int caption_h = static_cast<int>(std::ceil(3 * line + font / 2));
+  // The caption, in pixels under the picture: the title, the run's summary and the legend, each
+  // wrapped to the width (laid out first: the picture's height depends on it).
+  const double x0 = font / 2;
+  std::string caption;
+  double y = pic_h + line;
+  caption += fmt::format("<g class=\"caption\" fill=\"#222\">\n<text x=\"{:.1f}\" y=\"{:.1f}\" font-weight=\"bold\">{}</text>\n",
+                         x0, y, xml_escaped(scene_title(run)));
+  const auto chars = static_cast<std::size_t>(std::max(20.0, (width_px - 2 * x0) / (font * kGlyphEm)));
+  for (const std::string& text : wrapped(run_summary(run), chars)) {
+    y += line;
+    caption += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\">{}</text>\n", x0, y, xml_escaped(text));
+  }
+  y += line;
+  caption += legend(x0, y, font, line, width_px);
+  caption += "</g>\n";
+  const int caption_h = static_cast<int>(std::ceil(y - pic_h + font / 2));
   // World units per pixel: the nested svg scales the box to fit (meet) the picture's pixels.
   const double unit = 1 / std::min(width_px / v.box_width(), pic_h / v.box_height());
   const std::string title = xml_escaped(scene_title(run));
@@ -525,16 +579,8 @@ std::string svg_picture(const Run& run, const View& v, int width_px) {
   }
   out += "</g>\n</g>\n</svg>\n";
 
-  // The caption, in pixels under the picture.
-  const double x0 = font / 2;
-  double y = pic_h + line;
-  out += fmt::format("<g class=\"caption\" fill=\"#222\">\n<text x=\"{:.1f}\" y=\"{:.1f}\" font-weight=\"bold\">{}</text>\n",
-                     x0, y, title);
-  y += line;
-  out += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\">{}</text>\n", x0, y, xml_escaped(run_summary(run)));
-  y += line;
-  out += legend(x0, y, font);
-  out += "</g>\n</svg>\n";
+  out += caption;
+  out += "</svg>\n";
   return out;
 }
 

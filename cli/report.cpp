@@ -4,6 +4,7 @@
 #include "check_report.hpp"
 #include "exit_codes.hpp"
 #include "render.hpp"
+#include "report_progress.hpp"
 #include "run.hpp"
 
 #include "pge/families.hpp"
@@ -534,8 +535,11 @@ int make_report(const ReportOptions& o, Results& results) {
     } catch (const std::exception&) {
     }
     const int code = write_outputs(o, results, scenes.empty() ? nullptr : &scenes);
-    if (code == kExitOk && !o.quiet)
-      fmt::print("report: merged {} results ({} rows) into {}\n", parts.size(), results.rows.size(), o.out);
+    if (code == kExitOk && !o.quiet) {
+      fmt::print("report: merged {} results ({} rows) into {}; open {}\n", parts.size(), results.rows.size(), o.out,
+                 (fs::path(o.out) / "index.html").string());
+      if (o.headline) print_headline(stdout, results);
+    }
     return code;
   }
 
@@ -588,9 +592,18 @@ int make_report(const ReportOptions& o, Results& results) {
 
   std::size_t mine = 0;
   for (std::size_t k = o.shard; k < items.size(); k += o.shards) ++mine;
-  if (!o.quiet)
+  if (!o.quiet) {
     fmt::print("report: {} of {} items (shard {}/{}), {} scenes, writing {}\n", mine, items.size(), o.shard, o.shards,
                scenes.size(), o.out);
+    std::fflush(stdout);  // before the progress on stderr, in a log too
+  }
+  std::vector<ReportProgress::Planned> parts;
+  for (std::size_t k = o.shard; k < items.size(); k += o.shards) parts.push_back({items[k].kind, items[k].config.scalar});
+  ReportProgress progress(o.quiet ? ProgressStyle::None
+                          : o.progress_lines ? ProgressStyle::Lines
+                          : o.progress       ? ProgressStyle::Terminal
+                                             : ProgressStyle::None,
+                          parts, o.quick);
   const auto start = Clock::now();
   // Long sweeps keep what they measured: every 30 s the rows so far go to results.partial.json
   // (removed when the results are written).
@@ -608,19 +621,17 @@ int make_report(const ReportOptions& o, Results& results) {
         fmt::print(stderr, "pge report: {} (going on)\n", e.what());
       }
     }
-    if (o.progress) {
-      const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-      fmt::print(stderr, "\r[{}/{}] {:.0f} s {:60.60}", done + 1, mine, elapsed, item_label(items[k]));
-    }
+    progress.begin(done, item_label(items[k]));
     results.rows.push_back(measure(items[k], s, o.seed));
+    progress.end();
     const Row& row = results.rows.back();
     if (!row.error.empty() && !o.quiet) {
-      if (o.progress) fmt::print(stderr, "\n");
+      progress.interrupt();
       fmt::print(stderr, "pge report: {}: {}\n", item_label(items[k]), row.error);
     }
     ++done;
   }
-  if (o.progress) fmt::print(stderr, "\r{:90}\r", "");
+  progress.finish();
   calibration.push_back(calibration_seconds(5));
   results.meta.calibration_seconds = std::min(calibration[0], calibration[1]);
   if (o.shards > 1) results.meta.shards_merged = {o.shard};
@@ -630,9 +641,11 @@ int make_report(const ReportOptions& o, Results& results) {
   if (code == kExitOk) fs::remove(partial, dir_error);
   if (code == kExitOk && !o.quiet) {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    fmt::print("report: {} rows in {:.1f} s; {}\n", results.rows.size(), elapsed,
+    fmt::print("report: {} rows in {:.1f} s{}; {}\n", results.rows.size(), elapsed,
+               elapsed >= 60 ? " (" + short_duration(elapsed) + ")" : std::string(),
                out.page ? "open " + (fs::path(o.out) / "index.html").string()
                         : "merge the shards with: pge report --merge DIR... --out DIR");
+    if (out.page && o.headline) print_headline(stdout, results);
   }
   return code;
 }
@@ -675,6 +688,7 @@ int gate_command(const GateOptions& o) {
       ro.seed = baseline.meta.seed;
     }
     ro.out = (fs::path(o.out) / "report").string();
+    ro.headline = false;  // the gate's summary says what matters
     const int code = make_report(ro, results);
     if (code != kExitOk) results_error = fmt::format("measuring the results failed (exit {})", code);
   }

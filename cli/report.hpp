@@ -29,6 +29,8 @@ struct ReportOptions {
   std::string inject;               // a deliberate regression, for testing the gate: fast-solver, slow
   bool page = true;                 // write report.md, index.html and plots (not for a shard)
   bool progress = false, quiet = false;
+  bool progress_lines = false;      // progress for logs: a line per part every 30 s and at its end
+  bool headline = true;             // print the configurations' headline numbers at the end
   std::string command;              // the command line, shown on the page
 };
 

@@ -84,6 +84,105 @@ std::string style_of(const std::string& solver, const std::string& scalar) {
   return fmt::format("lc rgb '{}' dt {} lw 2", colour, dash);
 }
 
+// ---- point labels that never overlap
+
+// A label of a point in data coordinates (empty text: a point with no label, still in the way).
+struct PointLabel {
+  double x = 0, y = 0;
+  std::string text;
+};
+
+// A log-log plot with its frame fixed in the 900 x 540 picture (kTerminal's size): decades
+// x_lo..x_hi and y_lo..y_hi, margins at fixed fractions of the picture, so that a data point's
+// pixel is known before gnuplot draws it.
+struct LogFrame {
+  int x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;
+  static constexpr double kWidth = 900, kHeight = 540;
+  static constexpr double kLeft = 0.11, kRight = 0.79, kBottom = 0.14, kTop = 0.91;  // fractions of the picture
+
+  // Pixels, y down (as in the SVG).
+  double px(double x) const {
+    return kWidth * (kLeft + (kRight - kLeft) * (std::log10(x) - x_lo) / (x_hi - x_lo));
+  }
+  double py(double y) const {
+    return kHeight * (1 - (kBottom + (kTop - kBottom) * (std::log10(y) - y_lo) / (y_hi - y_lo)));
+  }
+  // The gnuplot commands that fix the frame (logscale xy, ranges, margins), and those that undo them.
+  std::string fixed() const {
+    return fmt::format("set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xrange [1e{}:1e{}]\n"
+                       "set yrange [1e{}:1e{}]\nset lmargin at screen {}\nset rmargin at screen {}\n"
+                       "set bmargin at screen {}\nset tmargin at screen {}\n",
+                       x_lo, x_hi, y_lo, y_hi, kLeft, kRight, kBottom, kTop);
+  }
+  static constexpr const char* kUnfixed =
+      "unset logscale\nunset format\nunset label\nunset arrow\nset xrange [*:*]\nset yrange [*:*]\n"
+      "set lmargin\nset rmargin\nset tmargin\nset bmargin\n";
+};
+
+// The whole decades around the positive values, with `room` decades at least at either end.
+std::pair<int, int> decades(const std::vector<double>& values, double room = 0.15) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const double v : values)
+    if (v > 0 && std::isfinite(v)) lo = std::min(lo, std::log10(v)), hi = std::max(hi, std::log10(v));
+  if (!(lo <= hi)) lo = hi = 0;
+  const int from = static_cast<int>(std::floor(lo - room));
+  return {from, std::max(static_cast<int>(std::ceil(hi + room)), from + 1)};
+}
+
+struct Box {
+  double x0, y0, x1, y1;
+  bool meets(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+// gnuplot `set label` and `set arrow` commands placing each label near its point where its box
+// (estimated from the font: an average glyph of a sans-serif font is about 0.55 em wide; 0.62
+// leaves room) meets no other label, no point and not the frame: beside the point first, then on
+// rings further out, joined to the point by a thin leader line. Labels go in order of x, so that
+// a row of close points fans out to one side. point: the half-size of a point's marker, pixels.
+std::string place_labels(std::vector<PointLabel> labels, const LogFrame& f, double point = 7) {
+  constexpr double kFont = 8, kGlyph = 0.62 * kFont, kLine = 1.3 * kFont, kPad = 1.5;
+  std::stable_sort(labels.begin(), labels.end(), [](const PointLabel& a, const PointLabel& b) { return a.x < b.x; });
+  const Box inside{f.px(std::pow(10.0, f.x_lo)) + 2, f.py(std::pow(10.0, f.y_hi)) + 2, f.px(std::pow(10.0, f.x_hi)) - 2,
+                   f.py(std::pow(10.0, f.y_lo)) - 2};
+  std::vector<Box> taken;
+  for (const PointLabel& l : labels)
+    taken.push_back({f.px(l.x) - point, f.py(l.y) - point, f.px(l.x) + point, f.py(l.y) + point});
+  std::string out;
+  const auto screen = [&](double x, double y) {
+    return fmt::format("screen {:.5f}, screen {:.5f}", x / LogFrame::kWidth, 1 - y / LogFrame::kHeight);
+  };
+  for (const PointLabel& l : labels) {
+    if (l.text.empty()) continue;
+    const double x = f.px(l.x), y = f.py(l.y), w = kGlyph * static_cast<double>(l.text.size());
+    // Candidate anchors (the label's left end, its vertical middle), nearest first.
+    const double near = point + 2;
+    std::vector<std::pair<double, double>> at{{x + near, y},          {x + near - 3, y - near - 4}, {x + near - 3, y + near + 4},
+                                              {x - near - w, y},      {x - w / 2, y - near - 7},    {x - w / 2, y + near + 7}};
+    for (int ring = 2; ring <= 12; ++ring)
+      for (int k = 0; k < 16; ++k) {
+        const double angle = -M_PI / 2 + 2 * M_PI * k / 16, r = 12.0 * ring;
+        const double cx = x + r * std::cos(angle) * 1.6, cy = y + r * std::sin(angle);
+        at.emplace_back(std::cos(angle) >= 0 ? cx : cx - w, cy);
+      }
+    bool placed = false;
+    for (std::size_t c = 0; c < at.size() && !placed; ++c) {
+      const auto [ax, ay] = at[c];
+      const Box box{ax - kPad, ay - kLine / 2 - kPad, ax + w + kPad, ay + kLine / 2 + kPad};
+      if (box.x0 < inside.x0 || box.x1 > inside.x1 || box.y0 < inside.y0 || box.y1 > inside.y1) continue;
+      if (std::any_of(taken.begin(), taken.end(), [&](const Box& t) { return t.meets(box); })) continue;
+      taken.push_back(box);
+      placed = true;
+      out += fmt::format("set label {} at {} left font ',{}' noenhanced front\n", gp_quoted(l.text), screen(ax, ay), kFont);
+      if (c >= 6) {  // far from its point: a leader line to the label's nearer end
+        const double ex = ax > x ? ax - 1 : ax + w + 1;
+        out += fmt::format("set arrow from {} to {} nohead lw 0.6 lc rgb '#888888' back\n", screen(x, y), screen(ex, ay));
+      }
+    }
+    // No room anywhere: the table beside the chart names every setting; leave the point unnamed.
+  }
+  return out;
+}
+
 struct Plots {
   std::string script;
   std::vector<std::string> files;  // the SVGs the script writes
@@ -96,10 +195,15 @@ Plots make_plots(const Results& r, const std::vector<ConfigSummary>& configs, co
   if (!configs.empty()) {
     std::string points, front, failing;
     std::vector<const ConfigSummary*> pareto;
+    std::vector<PointLabel> labels;
+    std::vector<double> xs, ys;
     for (const ConfigSummary& c : configs) {
       if (c.events == 0 || c.wall_seconds <= 0) continue;
       const double ns = 1e9 * c.wall_seconds / static_cast<double>(c.events);
       const std::string line = fmt::format("{} {} \"{}/{}\"\n", g(ns), g(on_log(c.rel_p99)), c.solver, c.scalar);
+      labels.push_back({ns, on_log(c.rel_p99), c.solver + "/" + c.scalar});
+      xs.push_back(ns);
+      ys.push_back(on_log(c.rel_p99));
       points += line;
       if (c.misses + c.phantoms > 0) failing += line;
       if (c.pareto) pareto.push_back(&c);
@@ -111,19 +215,23 @@ Plots make_plots(const Results& r, const std::vector<ConfigSummary>& configs, co
     if (!points.empty()) {
       write_file(dir / "speed_error.dat", points);
       write_file(dir / "pareto.dat", front.empty() ? points.substr(0, points.find('\n') + 1) : front);
+      // Labels placed as on the peers chart (place_labels): a solver's scalars can sit close.
+      const auto [x_lo, x_hi] = decades(xs);
+      const auto [y_lo, y_hi] = decades(ys, 0.5);
+      const LogFrame frame{x_lo, x_hi, y_lo, y_hi};
       s += kTerminal;
-      s += "set output 'speed_error.svg'\nset logscale xy\nset format y '10^{%L}'\n"
+      s += "set output 'speed_error.svg'\n" + frame.fixed() + place_labels(labels, frame, 12) +
            "set xlabel 'time per event, ns (engine alone, median of repeats; log)'\n"
            "set ylabel 'p99 relative time error (log; exact at 1e-40)'\n"
            "set title 'Speed against error: one point per solver x scalar'\n"
            "plot 'pareto.dat' using 1:2 with linespoints lw 2 pt 6 ps 2.4 lc rgb '#ff7f0e' title 'Pareto front', \\\n"
-           "     'speed_error.dat' using 1:2 with points pt 7 ps 1.3 lc rgb '#1f77b4' title 'configuration', \\\n"
-           "     'speed_error.dat' using 1:2:3 with labels offset char 1,0.6 left font ',9' notitle";
+           "     'speed_error.dat' using 1:2 with points pt 7 ps 1.3 lc rgb '#1f77b4' title 'configuration'";
       if (!failing.empty()) {
         write_file(dir / "speed_error_miss.dat", failing);
         s += ", \\\n     'speed_error_miss.dat' using 1:2 with points pt 2 ps 2.2 lc rgb 'black' title 'misses or phantoms'";
       }
-      s += "\nunset title\nunset logscale\nunset format\n";
+      s += "\nunset title\n";
+      s += LogFrame::kUnfixed;
       p.files.push_back("speed_error.svg");
     }
   }
@@ -181,6 +289,7 @@ Plots make_plots(const Results& r, const std::vector<ConfigSummary>& configs, co
     // table beside the chart has every setting in full.
     struct Series {
       std::string data, title, style;
+      std::vector<PointLabel> labels;
     };
     std::map<std::string, Series> series;  // by file stem, in plot order
     std::string tunnelling;
@@ -201,28 +310,40 @@ Plots make_plots(const Results& r, const std::vector<ConfigSummary>& configs, co
         series[stem].title = point.engine == "box2d" ? "Box2D" : point.engine == "chipmunk" ? "Chipmunk" : point.engine;
         series[stem].style = fmt::format("pt 7 ps 1.3 lc rgb '{}'", point.engine == "box2d" ? "#ff7f0e" : "#2ca02c");
       }
-      const std::string line = fmt::format("{} {} \"{}\"\n", g(point.wall), g(on_log(point.drift)), label);
-      series[stem].data += line;
-      if (point.tunnelled > 0) tunnelling += line;
+      series[stem].data += fmt::format("{} {}\n", g(point.wall), g(on_log(point.drift)));
+      series[stem].labels.push_back({point.wall, on_log(point.drift), label});
+      if (point.tunnelled > 0) tunnelling += fmt::format("{} {}\n", g(point.wall), g(on_log(point.drift)));
     }
     if (!series.empty()) {
+      // The frame is fixed (margins and ranges), so that the labels can be placed here, each
+      // where it overlaps no other label and no point (gnuplot's `with labels` puts every label at
+      // the same offset from its point, and a dozen settings of nearly the same speed and drift
+      // wrote over one another).
+      std::vector<PointLabel> all;
+      std::vector<double> walls;
+      for (const auto& [stem, one] : series)
+        for (const PointLabel& l : one.labels) {
+          all.push_back(l);
+          walls.push_back(l.x);
+        }
+      const auto [x_lo, x_hi] = decades(walls);
+      const LogFrame frame{x_lo, x_hi, -42, 1};
       std::string plot;
       for (const auto& [stem, one] : series) {
         write_file(dir / ("peers_" + stem + ".dat"), one.data);
-        plot += fmt::format("{}'peers_{}.dat' using 1:2 with points {} title '{}', \\\n  "
-                            "'peers_{}.dat' using 1:2:3 with labels offset char 0.8,0.6 left font ',7' notitle",
-                            plot.empty() ? "" : ", \\\n  ", stem, one.style, one.title, stem);
+        plot += fmt::format("{}'peers_{}.dat' using 1:2 with points {} title '{}'", plot.empty() ? "" : ", \\\n  ", stem,
+                            one.style, one.title);
       }
       if (!tunnelling.empty()) {
         write_file(dir / "peers_tunnelling.dat", tunnelling);
         plot += ", \\\n  'peers_tunnelling.dat' using 1:2 with points pt 2 ps 2.2 lc rgb 'black' title 'a body tunnelled'";
       }
       s += kTerminal;
-      s += "set output 'peers.svg'\nset logscale xy\nset format y '10^{%L}'\nset yrange [1e-42:10]\n"
-           "set xlabel 'wall time over the compare scenes, s (log)'\n"
+      s += "set output 'peers.svg'\n" + frame.fixed() + place_labels(all, frame);
+      s += "set xlabel 'wall time over the compare scenes, s (log)'\n"
            "set ylabel 'largest |energy drift| of an elastic scene (log; exact at 1e-40)'\n"
            "set title 'PGE against Box2D and Chipmunk: speed against energy error'\nplot " + plot +
-           "\nunset title\nunset logscale\nunset format\nset yrange [*:*]\n";
+           "\nunset title\n" + LogFrame::kUnfixed;
       p.files.push_back("peers.svg");
     }
   }

@@ -3,11 +3,13 @@
 # configurations, every part (the peers part on the head-on compare scene), it references nothing
 # outside itself, its plots are well-formed SVG from gnuplot, the peers part has PGE's rows in every
 # solver x scalar asked for, and headless Chromium loads it with no console error, exception or
-# failed load (tests/tools/html_console_check.sh; exit 77, a skip, only where Chromium is not
-# installed).
-# Usage: report_page.sh PGE FIXTURES_DIR CHECKER
+# failed load (tests/tools/html_console_check.sh), and in Chromium's layout every chart is there
+# and no label overlaps another or is cut off (tests/tools/report_layout_check.sh: the peers
+# chart's settings of nearly the same speed and drift wrote their labels over one another). Exit
+# 77, a skip, only where Chromium is not installed.
+# Usage: report_page.sh PGE FIXTURES_DIR CHECKER [LAYOUT_CHECKER]
 set -u
-pge=$1; fixtures=$2; checker=$3
+pge=$1; fixtures=$2; checker=$3; layout=${4:-$(dirname "$checker")/report_layout_check.sh}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
@@ -26,6 +28,15 @@ want = ["certified/float", "certified/quad", "robust/float", "robust/quad"]
 assert got == want, got
 assert all(r["error"] == "" and r["energy_drift"] == 0 and r["final_error"] == 0 for r in rows), rows
 PY
+# Progress for a log (--progress-lines): the plan, a line as each part ends; then index.html's path
+# and the headline numbers (a line per solver x scalar) on stdout.
+"$pge" report --quick --scenes "$fixtures/scenes/basics/head-on.json" --random 0 --solvers robust --scalars double,quad \
+  --parts accuracy,drift --out "$out/l" --progress-lines >"$out/l.out" 2>"$out/l.err" || fail "pge report --progress-lines exited with $?"
+grep -q '^measuring: accuracy 2 rows, drift 2 rows$' "$out/l.err" || fail "no plan line in: $(cat "$out/l.err")"
+grep -Eq '^accuracy: 2/2 rows in [0-9]+s, [0-9]+s elapsed, ~[0-9ms]+ left$' "$out/l.err" || fail "no accuracy line in: $(cat "$out/l.err")"
+grep -Eq '^drift: 2/2 rows in ' "$out/l.err" || fail "no drift line in: $(cat "$out/l.err")"
+grep -q "open $out/l/index.html" "$out/l.out" || fail "index.html's path not said: $(cat "$out/l.out")"
+grep -Eq '^robust/quad +0 ' "$out/l.out" || fail "no headline line for robust/quad: $(cat "$out/l.out")"
 page=$out/r/index.html
 [[ -s $page ]] || fail "no index.html"
 if grep -Eq '(src|href)="(https?:|//|file:)' "$page"; then fail "index.html references an outside resource"; fi
@@ -40,4 +51,5 @@ for svg in "$out"/r/plots/family-*.svg; do  # pge render's pictures of the fixtu
   python3 -c 'import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])' "$svg" || fail "$svg is not well-formed"
 done
 [[ -e $out/r/plots/family-basics.svg && -e $out/r/plots/family-random.svg ]] || fail "a family has no picture"
-"$checker" "$page"
+"$checker" "$page" || exit $?
+"$layout" "$page"

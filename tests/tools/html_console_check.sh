@@ -21,20 +21,11 @@
 # so that errors thrown by timers and animation frames are seen too.
 set -u
 
-chromium=${CHROMIUM:-/usr/bin/chromium}
 if [[ $# -eq 0 ]]; then
   echo "usage: $0 FILE.html [more.html ...]" >&2
   exit 2
 fi
-if [[ ! -x $chromium ]]; then
-  echo "html_console_check: Chromium not found at $chromium (install the Debian package 'chromium' or set" \
-       "CHROMIUM=/path/to/chromium); skipping" >&2
-  exit 77
-fi
-if ! command -v python3 >/dev/null; then
-  echo "html_console_check: python3 not found; skipping" >&2
-  exit 77
-fi
+source "$(dirname "$0")/chromium_or_skip.sh" html_console_check
 
 profile=$(mktemp -d "${TMPDIR:-/tmp}/html_console_check.XXXXXX")
 trap 'rm -rf "$profile"' EXIT
