@@ -86,7 +86,7 @@ if [[ $peers == 1 ]]; then
   # One simulated second, not the scene's ten: Box2D's and Chipmunk's fine settings take minutes.
   step "7/8 pge compare: the 1,000-ball peer gas for 1 s by PGE, Box2D and Chipmunk (every setting)"
   run peers "$pge" compare fixtures/scenes/peers/peers-gas-1000.json --until 1 -q --json "$out/peers-gas-1000.json" \
-    2>"$out/peers.log"   # Chipmunk's debug build greets on stderr
+    >"$out/peers.log" 2>&1   # Chipmunk's debug build greets on standard output
 else
   step "7/8 skipped (--no-peers)"
 fi
