@@ -8,9 +8,9 @@
 #   6. pge render of the snooker scene and the report's speed-against-error chart (docs/img/);
 # and writes docs/measurements.json (machine, commit, date, every figure with its exact command),
 # docs/measurements.md, and the figures table of README.md (between <!-- figures:begin --> and
-# <!-- figures:end -->). Prints one line per step on stderr. Takes about 5 to 10 minutes on a
-# 2-core machine (the report and the peers are most of it), plus the build. Timings depend on the
-# machine and its load: run it idle, compare runs on one machine.
+# <!-- figures:end -->). Prints one line per step on stderr. Takes about 3 minutes on a shared
+# 2-core machine (the report and the peers are most of it), plus the build (about 10 minutes from
+# scratch). Timings depend on the machine and its load: run it idle, compare runs on one machine.
 # Environment: PGE_BUILD_DIR (default build), PGE_JOBS (build jobs, default the number of cores).
 # Usage: scripts/measure.sh [--out DIR] [--no-peers] [--no-build]
 #   --out DIR    raw outputs (default out/measure)
@@ -264,7 +264,7 @@ L = ["# Measurements", "",
      "<!-- Written by scripts/measure.sh; do not edit by hand: run the script again. -->", "",
      f"Measured by `scripts/measure.sh` on {date} at commit `{commit}`{' (with local changes)' if dirty else ''}: "
      f"{machine['cpu']}, {machine['cores']} cores, {machine['os']}, load average {LOAD:.1f} at the start; build {build_type}. The script took {elapsed // 60} min {elapsed % 60} s "
-     "(the build included). The same figures, with their exact commands, are in [measurements.json](measurements.json). Timings "
+     "(its build step included, a few seconds when pge is already built). The same figures, with their exact commands, are in [measurements.json](measurements.json). Timings "
      "depend on the machine and on what else runs on it: compare runs on one machine, by ratios, and look at the accuracy "
      "columns, which do not depend on the machine.", "",
      "## The 1,000-ball gas, each solver", "",
