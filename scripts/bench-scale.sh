@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The figures of the README's "Measured" and "Scale" sections: builds bench_scale and pge, then
+# The scale figures of docs/scale.md (bench_scale, every benchmark): builds bench_scale and pge, then
 #   1. the three gas sizes in one bench_scale run, 3 repetitions (the cost of an event across N),
 #      then gas_interleaved (the 1e3 and 1e5 gases in alternating batches: the same ratio with
 #      the machine's noise falling on both sizes alike);
