@@ -8,6 +8,7 @@
 
 #include "pge/oracle.hpp"
 #include "pge/scene_io.hpp"
+#include "pge/step_loop.hpp"
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
@@ -104,8 +105,6 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   // The block may turn the oracle off for the scene's own run; a shorter run is judged as always.
   const bool measured = expect.present && outcome.enforcement != Enforcement::Verdicts;
   c.judged = !(measured && !expect.oracle);
-  c.energy_start = to_double(world.kinetic_energy() + world.potential_energy());
-  c.momentum_start = vec_cast<double>(world.momentum());
 
   ExpectTracker tracker(expect, c.bodies);
   const auto observe = [&c, &tracker](const CollisionInfo<T>& info) {
@@ -123,11 +122,13 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   } else {
     world.on_collision(observe);
   }
-  const auto start = Clock::now();
-  while (world.step()) progress.tick(world, c.contact_events, c.judged);
+  const auto stepped =
+      step_to_end(world, world_totals<T>, [&](const World<T>& w) { progress.tick(w, c.contact_events, c.judged); });
   progress.clear();
+  c.energy_start = to_double(stepped.start.energy());
+  c.momentum_start = vec_cast<double>(stepped.start.momentum);
   const double oracle_seconds = referee ? referee->stats().seconds : 0.0;
-  c.engine_seconds = std::chrono::duration<double>(Clock::now() - start).count() - oracle_seconds;
+  c.engine_seconds = stepped.wall_seconds - oracle_seconds;
   c.stop_reason = world.stop_reason();
   c.stop = std::string(stop_reason_name(world.stop_reason()));
   c.time = to_double(world.time());
@@ -141,8 +142,8 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
     c.end = referee->judge_end();
   }
   if (referee) c.oracle = referee->stats();
-  c.energy_end = to_double(world.kinetic_energy() + world.potential_energy());
-  c.momentum_end = vec_cast<double>(world.momentum());
+  c.energy_end = to_double(stepped.end.energy());
+  c.momentum_end = vec_cast<double>(stepped.end.momentum);
   c.final_states.reserve(c.bodies);
   for (BodyIndex i = 0; i < c.bodies; ++i) {
     const BodySnapshot<T> s = world.snapshot(i);

@@ -4,6 +4,7 @@
 #include "trace.hpp"
 
 #include "pge/scene_io.hpp"
+#include "pge/step_loop.hpp"
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
@@ -230,8 +231,7 @@ Run simulate(const LoadedScene& loaded, const WorldOptions& options) {
     for (const BodyIndex i : moving)
       if (!(w.motion(i).acc == Vec2d{})) sample(i);
   });
-  while (world.step()) {
-  }
+  step_to_end(world);
   for (const BodyIndex i : moving) sample(i);
 
   run.solver = std::string(solver_name(world.solver()));

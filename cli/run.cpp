@@ -5,6 +5,7 @@
 
 #include "pge/constants.hpp"
 #include "pge/scene_io.hpp"
+#include "pge/step_loop.hpp"
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
@@ -27,16 +28,6 @@ using Clock = std::chrono::steady_clock;
 
 // Above this many bodies the O(n^2) end-of-run overlap scan is skipped (it would dominate).
 constexpr std::size_t kFullOverlapScanMaxBodies = 20000;
-
-struct Measures {
-  double kinetic = 0;
-  double potential = 0;
-  Vec2d momentum;
-};
-
-template <class T> Measures measure(const World<T>& w) {
-  return {to_double(w.kinetic_energy()), to_double(w.potential_energy()), vec_cast<double>(w.momentum())};
-}
 
 struct SceneResult {
   int exit_code = kExitOk;
@@ -62,22 +53,21 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
     world.on_frame([&](const World<T>& w, T t) { trace->frame(w, t); });
   }
 
-  const Measures start = measure(world);
   const auto t_start = Clock::now();
   auto next_progress = t_start + std::chrono::milliseconds(500);
   std::uint64_t steps = 0;
-  while (world.step()) {
+  const auto progress = [&](const World<T>& w) {
     if (opt.progress && (++steps & 1023) == 0 && Clock::now() >= next_progress) {
       next_progress = Clock::now() + std::chrono::milliseconds(500);
       const double secs = std::chrono::duration<double>(Clock::now() - t_start).count();
-      fmt::print(stderr, "\r{}: t = {:.6g} / {:.6g}, {} collisions, {:.0f} events/s   ", label,
-                 to_double(world.time()), to_double(world.horizon()), world.counts().collisions,
-                 static_cast<double>(world.counts().collisions) / secs);
+      fmt::print(stderr, "\r{}: t = {:.6g} / {:.6g}, {} collisions, {:.0f} events/s   ", label, to_double(w.time()),
+                 to_double(w.horizon()), w.counts().collisions, static_cast<double>(w.counts().collisions) / secs);
     }
-  }
-  const double wall = std::chrono::duration<double>(Clock::now() - t_start).count();
+  };
+  const auto stepped = step_to_end(world, world_totals<T>, progress);
+  const double wall = stepped.wall_seconds;
   if (opt.progress) fmt::print(stderr, "\r{:80}\r", "");
-  const Measures end = measure(world);
+  const WorldTotals<double> start = in_double(stepped.start), end = in_double(stepped.end);
   const EventCounts& n = world.counts();
   const auto contact_overlap = world.largest_contact_overlap();
   const bool full_scan = world.body_count() <= kFullOverlapScanMaxBodies;
