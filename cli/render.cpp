@@ -1,6 +1,7 @@
 #include "render.hpp"
 
 #include "exit_codes.hpp"
+#include "scene_files.hpp"
 #include "trace.hpp"
 
 #include "pge/scene_io.hpp"
@@ -809,23 +810,12 @@ int render_command(const RenderOptions& options) {
     return kExitOutput;
   }
 
-  LoadedScene loaded;
-  try {
-    loaded = read_scene_file(options.scene);
-  } catch (const SceneError& e) {
-    fmt::print(stderr, "pge render: {}\n", e.what());
-    return kExitBadScene;
-  }
+  const std::optional<LoadedScene> loaded = load_scene("render", options.scene);
+  if (!loaded) return kExitBadScene;
   Run run;
-  try {
-    run = simulate(loaded, wo);
-  } catch (const UnsupportedScene& e) {
-    fmt::print(stderr, "pge render: {}: {}\n", options.scene, e.what());
-    return kExitUnsupported;
-  } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "pge render: {}: {}\n", options.scene, e.what());
-    return kExitBadScene;
-  }
+  if (const int refused = simulate_scene("render", options.scene, [&] { run = simulate(*loaded, wo); });
+      refused != kExitOk)
+    return refused;
 
   const View view = fit_view(run);
   const std::string text = *form == Form::Svg

@@ -4,7 +4,7 @@
 #include "check_report.hpp"
 #include "exit_codes.hpp"
 #include "render.hpp"
-#include "run.hpp"
+#include "scene_files.hpp"
 
 #include "pge/families.hpp"
 #include "pge/peers.hpp"
@@ -554,12 +554,8 @@ int make_report(const ReportOptions& o, Results& results) {
   std::vector<SceneItem> scenes;
   try {
     scenes = load_scenes(o, random);
-  } catch (const SceneError& e) {
-    fmt::print(stderr, "pge report: {}\n", e.what());
-    return kExitBadScene;
-  } catch (const std::runtime_error& e) {
-    fmt::print(stderr, "pge report: {}\n", e.what());
-    return kExitBadScene;
+  } catch (const std::runtime_error& e) {  // SceneError is one
+    return bad_scene("report", e);
   }
   // The pge compare scenes (fixtures/scenes/peers), for the peers part: in the full report, and in
   // a quick one only when --parts names it.

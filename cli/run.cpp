@@ -1,6 +1,7 @@
 #include "run.hpp"
 
 #include "exit_codes.hpp"
+#include "scene_files.hpp"
 #include "trace.hpp"
 
 #include "pge/constants.hpp"
@@ -185,34 +186,10 @@ std::vector<std::string> trace_names(const std::vector<std::string>& files) {
 
 }  // namespace
 
-std::vector<std::string> expand_scene_paths(const std::vector<std::string>& paths) {
-  std::vector<std::string> out;
-  for (const std::string& p : paths) {
-    std::error_code ec;
-    if (fs::is_directory(p, ec)) {
-      std::vector<std::string> found;
-      for (const auto& entry : fs::recursive_directory_iterator(p))
-        if (entry.is_regular_file() && entry.path().extension() == ".json") found.push_back(entry.path().string());
-      std::sort(found.begin(), found.end());
-      if (found.empty()) throw std::runtime_error(p + ": directory holds no *.json scene files");
-      out.insert(out.end(), found.begin(), found.end());
-    } else if (fs::exists(p, ec)) {
-      out.push_back(p);
-    } else {
-      throw std::runtime_error(p + ": no such file or directory");
-    }
-  }
-  return out;
-}
-
 int run_command(const RunOptions& opt) {
-  std::vector<std::string> files;
-  try {
-    files = expand_scene_paths(opt.scenes);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "pge run: {}\n", e.what());
-    return kExitBadScene;
-  }
+  const std::optional<std::vector<std::string>> listed = scene_files("run", opt.scenes);
+  if (!listed) return kExitBadScene;
+  const std::vector<std::string>& files = *listed;
   if (!opt.trace.empty() && files.size() != 1) {
     fmt::print(stderr, "pge run: --trace takes exactly one scene ({} given); use --trace-dir for several\n", files.size());
     return kExitUsage;
@@ -235,11 +212,8 @@ int run_command(const RunOptions& opt) {
   for (std::size_t k = 0; k < files.size(); ++k) {
     const std::string& file = files[k];
     const std::string label = files.size() > 1 ? fmt::format("[{}/{}] {}", k + 1, files.size(), file) : file;
-    LoadedScene loaded;
-    try {
-      loaded = read_scene_file(file);
-    } catch (const SceneError& e) {
-      fmt::print(stderr, "pge run: {}\n", e.what());
+    const std::optional<LoadedScene> loaded = load_scene("run", file);
+    if (!loaded) {
       fail(kExitBadScene);
       continue;
     }
@@ -254,8 +228,8 @@ int run_command(const RunOptions& opt) {
         continue;
       }
     }
-    try {
-      SceneResult r = simulate_any(loaded, opt, trace.get(), label);
+    fail(simulate_scene("run", file, [&] {
+      SceneResult r = simulate_any(*loaded, opt, trace.get(), label);
       if (trace && !trace->close()) {
         fmt::print(stderr, "pge run: error writing trace {}: {}\n", trace_path, trace->error());
         fail(kExitOutput);
@@ -264,13 +238,7 @@ int run_command(const RunOptions& opt) {
       }
       all.push_back(std::move(r.summary));
       fail(r.exit_code);
-    } catch (const UnsupportedScene& e) {
-      fmt::print(stderr, "pge run: {}: {}\n", file, e.what());
-      fail(kExitUnsupported);
-    } catch (const std::invalid_argument& e) {
-      fmt::print(stderr, "pge run: {}: {}\n", file, e.what());
-      fail(kExitBadScene);
-    }
+    }));
   }
   if (!opt.json_summary.empty()) {
     std::ofstream out(opt.json_summary);
