@@ -3,11 +3,12 @@
 #include "check_report.hpp"
 #include "exit_codes.hpp"
 #include "expect.hpp"
-#include "run.hpp"
+#include "scene_files.hpp"
 #include "stdout.hpp"
 
 #include "pge/oracle.hpp"
 #include "pge/scene_io.hpp"
+#include "pge/step_loop.hpp"
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
@@ -104,8 +105,6 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   // The block may turn the oracle off for the scene's own run; a shorter run is judged as always.
   const bool measured = expect.present && outcome.enforcement != Enforcement::Verdicts;
   c.judged = !(measured && !expect.oracle);
-  c.energy_start = to_double(world.kinetic_energy() + world.potential_energy());
-  c.momentum_start = vec_cast<double>(world.momentum());
 
   ExpectTracker tracker(expect, c.bodies);
   const auto observe = [&c, &tracker](const CollisionInfo<T>& info) {
@@ -123,11 +122,13 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   } else {
     world.on_collision(observe);
   }
-  const auto start = Clock::now();
-  while (world.step()) progress.tick(world, c.contact_events, c.judged);
+  const auto stepped =
+      step_to_end(world, world_totals<T>, [&](const World<T>& w) { progress.tick(w, c.contact_events, c.judged); });
   progress.clear();
+  c.energy_start = to_double(stepped.start.energy());
+  c.momentum_start = vec_cast<double>(stepped.start.momentum);
   const double oracle_seconds = referee ? referee->stats().seconds : 0.0;
-  c.engine_seconds = std::chrono::duration<double>(Clock::now() - start).count() - oracle_seconds;
+  c.engine_seconds = stepped.wall_seconds - oracle_seconds;
   c.stop_reason = world.stop_reason();
   c.stop = std::string(stop_reason_name(world.stop_reason()));
   c.time = to_double(world.time());
@@ -141,8 +142,8 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
     c.end = referee->judge_end();
   }
   if (referee) c.oracle = referee->stats();
-  c.energy_end = to_double(world.kinetic_energy() + world.potential_energy());
-  c.momentum_end = vec_cast<double>(world.momentum());
+  c.energy_end = to_double(stepped.end.energy());
+  c.momentum_end = vec_cast<double>(stepped.end.momentum);
   c.final_states.reserve(c.bodies);
   for (BodyIndex i = 0; i < c.bodies; ++i) {
     const BodySnapshot<T> s = world.snapshot(i);
@@ -206,16 +207,14 @@ int check_file(const std::string& file, const CheckOptions& opt, const std::stri
     if (row)
       for (TableCell& cell : row->cells) cell.result = why;
   };
-  LoadedScene loaded;
   Expect expect;
-  try {
-    loaded = read_scene_file(file);
-    expect = parse_expect(loaded);
-  } catch (const SceneError& e) {
-    fmt::print(stderr, "pge check: {}\n", e.what());
+  const std::optional<LoadedScene> read =
+      load_scene("check", file, [&expect](const LoadedScene& l) { expect = parse_expect(l); });
+  if (!read) {
     fail_row("error: bad scene file");
     return kExitBadScene;
   }
+  const LoadedScene& loaded = *read;
   std::vector<SolverKind> solvers{loaded.scene.run.solver};
   if (opt.all_solvers) solvers.assign(kAllSolvers.begin(), kAllSolvers.end());
   if (!opt.solver.empty()) parse_solver_kind(opt.solver, solvers[0]);
@@ -223,21 +222,18 @@ int check_file(const std::string& file, const CheckOptions& opt, const std::stri
   int exit_code = kExitOk;
   for (const SolverKind solver : solvers) {
     Progress progress{opt.progress, solvers.size() > 1 ? fmt::format("{} ({})", label, solver_name(solver)) : label};
-    try {
+    const auto run = [&] {
       const SceneCheck c = check_any(loaded, expect, solver, plan(expect, solver, solvers.size() > 1, deviated), opt, progress);
       report_run(file, loaded, c, out);
       if (row) row->cells[static_cast<std::size_t>(solver)] = table_cell(c);
       if (exit_code == kExitOk) exit_code = exit_code_of(c);
-    } catch (const UnsupportedScene& e) {
-      progress.clear();
-      fmt::print(stderr, "pge check: {}: {}\n", file, e.what());
-      fail_row("error: unsupported");
-      return kExitUnsupported;
-    } catch (const std::invalid_argument& e) {
-      progress.clear();
-      fmt::print(stderr, "pge check: {}: {}\n", file, e.what());
-      fail_row("error: invalid scene");
-      return kExitBadScene;
+    };
+    try {
+      const int refused = simulate_scene("check", file, run, [&progress] { progress.clear(); });
+      if (refused != kExitOk) {
+        fail_row(refused == kExitUnsupported ? "error: unsupported" : "error: invalid scene");
+        return refused;
+      }
     } catch (const std::logic_error& e) {
       // The engine's own validation (PGE_VALIDATE builds) stopped the run: an overlap past the
       // bound, say, as when fast lets a box fall through the box it rests on. A failure of that
@@ -270,13 +266,9 @@ SceneCheck judged_run(const LoadedScene& loaded, SolverKind solver, const std::s
 }
 
 int check_command(const CheckOptions& opt) {
-  std::vector<std::string> files;
-  try {
-    files = expand_scene_paths(opt.scenes);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "pge check: {}\n", e.what());
-    return kExitBadScene;
-  }
+  const std::optional<std::vector<std::string>> listed = scene_files("check", opt.scenes);
+  if (!listed) return kExitBadScene;
+  const std::vector<std::string>& files = *listed;
   Output out;
   out.summaries = !opt.quiet && !(opt.table && opt.table_out.empty());
   if (!opt.json.empty()) {

@@ -1,6 +1,7 @@
 #include "compare.hpp"
 
 #include "exit_codes.hpp"
+#include "scene_files.hpp"
 
 #include "pge/peers.hpp"
 #include "pge/scene_io.hpp"
@@ -47,13 +48,9 @@ int compare_command(const CompareOptions& opt) {
       fmt::print(stderr, "pge compare: unknown peer \"{}\" (known: box2d, chipmunk)\n", p);
       return kExitUsage;
     }
-  LoadedScene scene;
-  try {
-    scene = read_scene_file(opt.scene);
-  } catch (const SceneError& e) {
-    fmt::print(stderr, "pge compare: {}\n", e.what());
-    return kExitBadScene;
-  }
+  const std::optional<LoadedScene> read = load_scene("compare", opt.scene);
+  if (!read) return kExitBadScene;
+  const LoadedScene& scene = *read;
   const double horizon = opt.until > 0 ? opt.until : scene.scene.run.until;
 
   std::vector<peers::Setting> settings;
@@ -68,15 +65,10 @@ int compare_command(const CompareOptions& opt) {
   }
 
   std::vector<Vec2d> reference;
-  try {
-    reference = peers::reference_positions(scene.scene, horizon);
-  } catch (const UnsupportedScene& e) {
-    fmt::print(stderr, "pge compare: {}: {}\n", opt.scene, e.what());
-    return kExitUnsupported;
-  } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "pge compare: {}: {}\n", opt.scene, e.what());
-    return kExitBadScene;
-  }
+  if (const int refused = simulate_scene("compare", opt.scene,
+                                         [&] { reference = peers::reference_positions(scene.scene, horizon); });
+      refused != kExitOk)
+    return refused;
 
   std::vector<peers::Outcome> rows;
   for (const peers::Setting& s : settings) {

@@ -6,6 +6,7 @@
 #include "render.hpp"
 #include "report_progress.hpp"
 #include "run.hpp"
+#include "scene_files.hpp"
 
 #include "pge/families.hpp"
 #include "pge/peers.hpp"
@@ -13,6 +14,7 @@
 #include "pge/hash.hpp"
 #include "pge/report_page.hpp"
 #include "pge/scene_io.hpp"
+#include "pge/step_loop.hpp"
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
@@ -205,17 +207,16 @@ Timed run_once(const Scene& scene, SolverKind solver, double until, std::uint64_
       return to_double((e - e0) / (e0 < T(0) ? -e0 : e0 > T(0) ? e0 : T(1)));
     };
     t.series.emplace_back(0.0, 0.0);
-    while (w.step()) {
-      const std::uint64_t n = w.counts().collisions + w.counts().grazes;
+    step_to_end(w, NoMeasure{}, [&](const World<T>& world) {
+      const std::uint64_t n = world.counts().collisions + world.counts().grazes;
       if (n >= next) {
         t.series.emplace_back(static_cast<double>(n), drift());
         next = n + every;
       }
-    }
+    });
     t.energy_drift = drift();
   } else {
-    while (w.step()) {
-    }
+    step_to_end(w);
   }
   t.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   t.events = w.counts().collisions + w.counts().grazes;
@@ -558,12 +559,8 @@ int make_report(const ReportOptions& o, Results& results) {
   std::vector<SceneItem> scenes;
   try {
     scenes = load_scenes(o, random);
-  } catch (const SceneError& e) {
-    fmt::print(stderr, "pge report: {}\n", e.what());
-    return kExitBadScene;
-  } catch (const std::runtime_error& e) {
-    fmt::print(stderr, "pge report: {}\n", e.what());
-    return kExitBadScene;
+  } catch (const std::runtime_error& e) {  // SceneError is one
+    return bad_scene("report", e);
   }
   // The pge compare scenes (fixtures/scenes/peers), for the peers part: in the full report, and in
   // a quick one only when --parts names it.

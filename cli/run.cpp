@@ -1,10 +1,12 @@
 #include "run.hpp"
 
 #include "exit_codes.hpp"
+#include "scene_files.hpp"
 #include "trace.hpp"
 
 #include "pge/constants.hpp"
 #include "pge/scene_io.hpp"
+#include "pge/step_loop.hpp"
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
@@ -27,16 +29,6 @@ using Clock = std::chrono::steady_clock;
 
 // Above this many bodies the O(n^2) end-of-run overlap scan is skipped (it would dominate).
 constexpr std::size_t kFullOverlapScanMaxBodies = 20000;
-
-struct Measures {
-  double kinetic = 0;
-  double potential = 0;
-  Vec2d momentum;
-};
-
-template <class T> Measures measure(const World<T>& w) {
-  return {to_double(w.kinetic_energy()), to_double(w.potential_energy()), vec_cast<double>(w.momentum())};
-}
 
 struct SceneResult {
   int exit_code = kExitOk;
@@ -62,22 +54,21 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
     world.on_frame([&](const World<T>& w, T t) { trace->frame(w, t); });
   }
 
-  const Measures start = measure(world);
   const auto t_start = Clock::now();
   auto next_progress = t_start + std::chrono::milliseconds(500);
   std::uint64_t steps = 0;
-  while (world.step()) {
+  const auto progress = [&](const World<T>& w) {
     if (opt.progress && (++steps & 1023) == 0 && Clock::now() >= next_progress) {
       next_progress = Clock::now() + std::chrono::milliseconds(500);
       const double secs = std::chrono::duration<double>(Clock::now() - t_start).count();
-      fmt::print(stderr, "\r{}: t = {:.6g} / {:.6g}, {} collisions, {:.0f} events/s   ", label,
-                 to_double(world.time()), to_double(world.horizon()), world.counts().collisions,
-                 static_cast<double>(world.counts().collisions) / secs);
+      fmt::print(stderr, "\r{}: t = {:.6g} / {:.6g}, {} collisions, {:.0f} events/s   ", label, to_double(w.time()),
+                 to_double(w.horizon()), w.counts().collisions, static_cast<double>(w.counts().collisions) / secs);
     }
-  }
-  const double wall = std::chrono::duration<double>(Clock::now() - t_start).count();
+  };
+  const auto stepped = step_to_end(world, world_totals<T>, progress);
+  const double wall = stepped.wall_seconds;
   if (opt.progress) fmt::print(stderr, "\r{:80}\r", "");
-  const Measures end = measure(world);
+  const WorldTotals<double> start = in_double(stepped.start), end = in_double(stepped.end);
   const EventCounts& n = world.counts();
   const auto contact_overlap = world.largest_contact_overlap();
   const bool full_scan = world.body_count() <= kFullOverlapScanMaxBodies;
@@ -195,34 +186,10 @@ std::vector<std::string> trace_names(const std::vector<std::string>& files) {
 
 }  // namespace
 
-std::vector<std::string> expand_scene_paths(const std::vector<std::string>& paths) {
-  std::vector<std::string> out;
-  for (const std::string& p : paths) {
-    std::error_code ec;
-    if (fs::is_directory(p, ec)) {
-      std::vector<std::string> found;
-      for (const auto& entry : fs::recursive_directory_iterator(p))
-        if (entry.is_regular_file() && entry.path().extension() == ".json") found.push_back(entry.path().string());
-      std::sort(found.begin(), found.end());
-      if (found.empty()) throw std::runtime_error(p + ": directory holds no *.json scene files");
-      out.insert(out.end(), found.begin(), found.end());
-    } else if (fs::exists(p, ec)) {
-      out.push_back(p);
-    } else {
-      throw std::runtime_error(p + ": no such file or directory");
-    }
-  }
-  return out;
-}
-
 int run_command(const RunOptions& opt) {
-  std::vector<std::string> files;
-  try {
-    files = expand_scene_paths(opt.scenes);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "pge run: {}\n", e.what());
-    return kExitBadScene;
-  }
+  const std::optional<std::vector<std::string>> listed = scene_files("run", opt.scenes);
+  if (!listed) return kExitBadScene;
+  const std::vector<std::string>& files = *listed;
   if (!opt.trace.empty() && files.size() != 1) {
     fmt::print(stderr, "pge run: --trace takes exactly one scene ({} given); use --trace-dir for several\n", files.size());
     return kExitUsage;
@@ -245,11 +212,8 @@ int run_command(const RunOptions& opt) {
   for (std::size_t k = 0; k < files.size(); ++k) {
     const std::string& file = files[k];
     const std::string label = files.size() > 1 ? fmt::format("[{}/{}] {}", k + 1, files.size(), file) : file;
-    LoadedScene loaded;
-    try {
-      loaded = read_scene_file(file);
-    } catch (const SceneError& e) {
-      fmt::print(stderr, "pge run: {}\n", e.what());
+    const std::optional<LoadedScene> loaded = load_scene("run", file);
+    if (!loaded) {
       fail(kExitBadScene);
       continue;
     }
@@ -264,8 +228,8 @@ int run_command(const RunOptions& opt) {
         continue;
       }
     }
-    try {
-      SceneResult r = simulate_any(loaded, opt, trace.get(), label);
+    fail(simulate_scene("run", file, [&] {
+      SceneResult r = simulate_any(*loaded, opt, trace.get(), label);
       if (trace && !trace->close()) {
         fmt::print(stderr, "pge run: error writing trace {}: {}\n", trace_path, trace->error());
         fail(kExitOutput);
@@ -274,13 +238,7 @@ int run_command(const RunOptions& opt) {
       }
       all.push_back(std::move(r.summary));
       fail(r.exit_code);
-    } catch (const UnsupportedScene& e) {
-      fmt::print(stderr, "pge run: {}: {}\n", file, e.what());
-      fail(kExitUnsupported);
-    } catch (const std::invalid_argument& e) {
-      fmt::print(stderr, "pge run: {}: {}\n", file, e.what());
-      fail(kExitBadScene);
-    }
+    }));
   }
   if (!opt.json_summary.empty()) {
     std::ofstream out(opt.json_summary);

@@ -29,8 +29,4 @@ struct RunOptions {
 
 int run_command(const RunOptions& options);
 
-// Expands files and directories into a sorted list of scene files; throws std::runtime_error
-// naming a path that does not exist.
-std::vector<std::string> expand_scene_paths(const std::vector<std::string>& paths);
-
 }  // namespace pge::cli

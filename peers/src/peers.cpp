@@ -2,6 +2,7 @@
 #include "pge/peers.hpp"
 
 #include "peer_sim.hpp"
+#include "pge/step_loop.hpp"
 #include "pge/world.hpp"
 
 #include <algorithm>
@@ -193,13 +194,11 @@ Outcome run_pge_as(const Scene& scene, SolverKind solver, double horizon, const 
     }
     return totals<Wide<T>>(scene, p, v);
   };
-  const Totals<Wide<T>> start = state();
-  const auto t0 = Clock::now();
-  while (world.step()) {
-  }
-  o.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-  if (world.stop_reason() == StopReason::EventStorm) o.error = "event storm";
-  set_drifts(o, start, state());
+  // state() leaves p and v at the end positions and velocities: the end measures below read them.
+  const auto stepped = step_to_end(world, [&](const World<T>&) { return state(); });
+  o.wall_seconds = stepped.wall_seconds;
+  if (stepped.stop == StopReason::EventStorm) o.error = "event storm";
+  set_drifts(o, stepped.start, stepped.end);
   o.penetration = to_double(world.largest_contact_overlap().relative);
   std::vector<Vec2d> end(n);
   const Box box = fixed_bounds(scene);

@@ -4,7 +4,7 @@
 // certified event times are re-derived from the exact paths (refine_near_top), so they do not
 // depend on when a pair was predicted; the fast solver's do, and it is not compared.
 // Reproduce a property failure with the RC_PARAMS string rapidcheck prints:
-//   RC_PARAMS="reproduce=..." build/tests/test_broad_phase
+//   RC_PARAMS="reproduce=..." build/properties/tests/test_broad_phase
 #include "pge/families.hpp"
 #include "pge/generators.hpp"
 #include "pge/world.hpp"

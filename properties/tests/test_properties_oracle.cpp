@@ -4,7 +4,7 @@
 // (certified's promise; robust keeps it too, since both re-derive event times exactly). Kept
 // apart from test_properties because it links the oracle (CGAL, GMP).
 // Reproduce a failure with the RC_PARAMS string rapidcheck prints; run longer with
-//   RC_PARAMS="seed=1 max_success=100000" build/tests/test_properties_oracle
+//   RC_PARAMS="seed=1 max_success=100000" build/properties/tests/test_properties_oracle
 #include "pge/generators.hpp"
 #include "pge/oracle.hpp"
 #include "pge/scene_io.hpp"

@@ -1,7 +1,7 @@
 // Properties of the engine on generated scenes (rapidcheck). Conservation is measured exactly:
 // sums of the engine's doubles in rationals, so the measurement adds no error of its own.
 // Reproduce a failure with the RC_PARAMS string rapidcheck prints, e.g.
-//   RC_PARAMS="reproduce=..." build/tests/test_properties
+//   RC_PARAMS="reproduce=..." build/properties/tests/test_properties
 // and run longer with RC_PARAMS="seed=1 max_success=100000".
 #include "pge/constants.hpp"
 #include "pge/generators.hpp"
