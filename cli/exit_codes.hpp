@@ -1,4 +1,4 @@
-// The exit codes of the `pge` command (also listed in `pge --help` and README.md).
+// The exit codes of the `pge` command (also listed in `pge --help` and docs/commands.md).
 #pragma once
 
 namespace pge::cli {

@@ -1,4 +1,4 @@
-// The event trace: JSON Lines, one object per line (format "pge-trace/1", see README.md).
+// The event trace: JSON Lines, one object per line (format "pge-trace/1", see docs/formats.md).
 // Numbers are written in shortest round-trip form; extended scalars are rounded to double.
 #pragma once
 

@@ -5,7 +5,8 @@
 #   3. pge check on a generated 200-ball gas (the oracle's speed and its filter's share);
 #   4. pge report --quick (per solver x scalar: speed, misses, phantoms, time errors, drift);
 #   5. pge compare on the 1,000-ball peer gas, 1 simulated second (PGE against Box2D and Chipmunk);
-#   6. pge render of the snooker scene and the report's speed-against-error chart (docs/img/);
+#   6. the main job, scripts/run-bundled.sh (its default sweep, pge already built): wall time;
+#   7. pge render of the snooker scene and the report's speed-against-error chart (docs/img/);
 # and writes docs/measurements.json (machine, commit, date, every figure with its exact command),
 # docs/measurements.md, and the figures table of README.md (between <!-- figures:begin --> and
 # <!-- figures:end -->). Prints one line per step on stderr. Takes about 3 minutes on a shared
@@ -14,7 +15,7 @@
 # Environment: PGE_BUILD_DIR (default build), PGE_JOBS (build jobs, default the number of cores).
 # Usage: scripts/measure.sh [--out DIR] [--no-peers] [--no-build]
 #   --out DIR    raw outputs (default out/measure)
-#   --no-peers   leave out step 5
+#   --no-peers   leave out the peers (pge compare)
 #   --no-build   use the pge already built in the build directory
 # Exit code: 0, or non-zero if a build or a run failed (the step line says which).
 set -euo pipefail
@@ -50,24 +51,24 @@ run() {
 }
 
 if [[ $build_it == 1 ]]; then
-  step "1/8 install missing packages (scripts/install-deps.sh)"
+  step "1/9 install missing packages (scripts/install-deps.sh)"
   scripts/install-deps.sh >"$out/install.log" 2>&1 || { cat "$out/install.log" >&2; exit 1; }
-  step "2/8 build pge ($build, RelWithDebInfo, -j $jobs)"
+  step "2/9 build pge ($build, RelWithDebInfo, -j $jobs)"
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo >"$out/cmake.log"
   cmake --build "$build" -j "$jobs" --target pge >>"$out/cmake.log"
 else
-  step "1/8, 2/8 skipped (--no-build): using $pge"
+  step "1/9, 2/9 skipped (--no-build): using $pge"
 fi
 [[ -x $pge ]] || { echo "measure.sh: $pge is missing (build it, or drop --no-build)" >&2; exit 1; }
 
-step "3/8 pge run: the 1,000-ball gas with fast, robust and certified, 3 runs each"
+step "3/9 pge run: the 1,000-ball gas with fast, robust and certified, 3 runs each"
 for solver in fast robust certified; do
   for k in 1 2 3; do
     run "gas1000-$solver" "$pge" run fixtures/scenes/basics/gas-1000.json --solver "$solver" -q --json "$out/gas1000-$solver-$k.json"
   done
 done
 
-step "4/8 pge run: generated gases of 1,000 and 100,000 balls (robust; 100 and 10 events per ball)"
+step "4/9 pge run: generated gases of 1,000 and 100,000 balls (robust; 100 and 10 events per ball)"
 run scale-gen-1e3 "$pge" generate gas --bodies 1000 --seed 1 --until 1000 --max-events 100000 -o "$out/gas-1e3.json"
 run scale-gen-1e5 "$pge" generate gas --bodies 100000 --seed 1 --until 1000 --max-events 1000000 -o "$out/gas-1e5.json"
 for k in 1 2 3; do
@@ -75,23 +76,29 @@ for k in 1 2 3; do
 done
 run scale-1e5 "$pge" run "$out/gas-1e5.json" -q --json "$out/scale-1e5-1.json"
 
-step "5/8 pge check: the oracle on a generated 200-ball gas (20,000 events)"
+step "5/9 pge check: the oracle on a generated 200-ball gas (20,000 events)"
 run oracle-gen "$pge" generate gas --bodies 200 --seed 1 --until 1000 --max-events 20000 -o "$out/gas-200.json"
 run oracle "$pge" check "$out/gas-200.json" -q --json "$out/check-gas-200.json"
 
-step "6/8 pge report --quick (every solver x scalar, judged by the oracle, then timed)"
+step "6/9 pge report --quick (every solver x scalar, judged by the oracle, then timed)"
 run report "$pge" report --quick --quiet --out "$out/report"
 
 if [[ $peers == 1 ]]; then
   # One simulated second, not the scene's ten: Box2D's and Chipmunk's fine settings take minutes.
-  step "7/8 pge compare: the 1,000-ball peer gas for 1 s by PGE, Box2D and Chipmunk (every setting)"
+  step "7/9 pge compare: the 1,000-ball peer gas for 1 s by PGE, Box2D and Chipmunk (every setting)"
   run peers "$pge" compare fixtures/scenes/peers/peers-gas-1000.json --until 1 -q --json "$out/peers-gas-1000.json" \
     >"$out/peers.log" 2>&1   # Chipmunk's debug build greets on standard output
 else
-  step "7/8 skipped (--no-peers)"
+  step "7/9 skipped (--no-peers)"
 fi
 
-step "8/8 pictures (docs/img/), docs/measurements.json, docs/measurements.md, README.md figures"
+step "8/9 the main job: scripts/run-bundled.sh --no-deps --no-screenshot (its default sweep)"
+bundled_start=$(date +%s.%N)
+PGE_BUILD_DIR=$build run bundled scripts/run-bundled.sh --no-deps --no-screenshot --out "$out/bundled" >"$out/bundled.log" 2>&1
+python3 -c "import sys; print(round(float(sys.argv[2]) - float(sys.argv[1]), 1))" "$bundled_start" "$(date +%s.%N)" \
+  >"$out/bundled-seconds.txt"
+
+step "9/9 pictures (docs/img/), docs/measurements.json, docs/measurements.md, README.md figures"
 run picture "$pge" render fixtures/scenes/games/snooker.json -o docs/img/snooker.svg --max-events 60 -q
 cp "$out/report/plots/speed_error.svg" docs/img/speed-error.svg
 printf '%s\t%s\n' chart "$pge report --quick --out $out/report (plots/speed_error.svg)" >>"$commands"
@@ -146,6 +153,11 @@ for solver in ("fast", "robust", "certified"):
            f"gas1000-{solver}", "gas")
     figure(f"gas1000_{solver}_energy_drift", f"relative energy change over the run, 1,000-ball gas, {solver}",
            gas[solver]["drift"], "relative", f"gas1000-{solver}", "gas")
+
+# The main job's wall time (the build already done).
+bundled_seconds = float(open(f"{out}/bundled-seconds.txt").read())
+figure("main_job_seconds", "the main job (scripts/run-bundled.sh, default sweep), wall time with pge built", bundled_seconds,
+       "s", "bundled", "main")
 
 # 2. Scale.
 s3 = statistics.median(json.load(open(f"{out}/scale-1e3-{k}.json"))[0]["events_per_second"] for k in (1, 2, 3))
@@ -247,6 +259,7 @@ for label, setting, r in peer_rows:
         continue  # in docs/measurements.md
     what = label if r["engine"] == "pge" else f"{label} ({setting})"
     readme.append(f"| the 1,000-ball gas for 1 s, {what}: wall time, energy drift | {r['wall_seconds']:.2f} s, {g(r['energy_drift'])} |")
+readme.append(f"| the main job, `scripts/run-bundled.sh` (quick report with the small peer scenes), pge already built | {bundled_seconds:.0f} s |")
 short = commit[:7] + (" (with local changes)" if dirty else "")
 readme.append("")
 readme.append(f"{machine['cpu']}, {machine['cores']} cores (load average {LOAD:.1f} at the start); {build_type}; commit {short}; {date[:10]}. "
@@ -315,6 +328,11 @@ if peer_rows:
         setting = r["label"] if r["engine"] != "pge" else f"{r['solver']}/{r['scalar']}"
         L.append(f"| {r['engine']} | {setting} | {r['wall_seconds']:.2f} | {g(r['energy_drift'])} | {r['tunnelled']} |")
     L += ["", "```sh", commands["peers"][0], "```", ""]
+L += ["## The main job", "",
+      f"`scripts/run-bundled.sh` with its default sweep (the quick report over the bundled fixtures with the four small peer "
+      f"scenes, every event judged by the oracle) took **{bundled_seconds:.0f} s** of wall time, pge already built "
+      "(`--full`: the full report, about 20 minutes).", "",
+      "```sh", "PGE_BUILD_DIR=" + build + " " + commands["bundled"][0], "```", ""]
 L += ["## Pictures", "",
       "The README's pictures, made by the same run: `docs/img/snooker.svg` and `docs/img/speed-error.svg` (the quick report's chart).", "",
       "```sh", commands["picture"][0], "```", ""]

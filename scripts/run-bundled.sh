@@ -39,7 +39,7 @@
 #
 # Exit codes: 0 the report was written; 2 bad command line (this script's); otherwise the code of
 # the step that failed: scripts/install-deps.sh (1 a package could not be installed, 2 not
-# Debian), the build (cmake's, usually 1 or 2), or `pge report` (README.md, "Exit codes": 2 bad
+# Debian), the build (cmake's, usually 1 or 2), or `pge report` (docs/commands.md, "Exit codes": 2 bad
 # command line, 3 bad scene file, 6 cannot write the output, ...).
 set -euo pipefail
 cd "$(dirname "$0")/.."

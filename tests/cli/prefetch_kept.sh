@@ -3,7 +3,7 @@
 # GCC treats __builtin_prefetch as free of side effects and deleted loops that only prefetch as
 # empty loops: in 62d1855 World<double>::step() had no prefetch left, and prefetch helpers
 # written after it compiled to a bare `ret`; with the prefetches kept, an event with 1e5 bodies
-# takes about a quarter less time (README, "Scale").
+# takes about a quarter less time (docs/scale.md).
 # Reads the disassembly of the engine library and checks, for the double world:
 #   1. every function named *prefetch* issues a prefetch or calls something (not a bare ret);
 #   2. World<double>::step() issues prefetches (the next events' bodies and this one's cells),

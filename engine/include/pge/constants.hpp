@@ -70,7 +70,7 @@ inline constexpr double kRestVertexTolerance = 1e-9;
 // pair's relative speed * |t| + contact distance). A contact time is computed from coordinates
 // rounded at that scale and is itself rounded to ulp(t), in which the pair closes |v_rel| ulp(t),
 // so its overlap is a small multiple of it (measured on a 1,000-ball gas: about 150 for double,
-// 50 for float; on the bundled games over 100,000 events, see README); a missed or late contact
+// 50 for float; on the bundled games over 100,000 events, see docs/harness.md); a missed or late contact
 // shows up as an overlap many orders of magnitude beyond this. Dimensionless.
 inline constexpr double kOverlapBoundUlps = 1024;
 
@@ -79,7 +79,7 @@ inline constexpr double kOverlapBoundUlps = 1024;
 // epsilon(T) * the pair's coordinate scale (largest vertex coordinate magnitude), widened by
 // (1 + cot of the crossing angle), which is how much a root time's rounding moves the contact
 // point along the edge. Such a contact collides only if the two bodies start to overlap (see
-// README, "What an event means") and takes the corner's normal. Too small: a corner hit can
+// docs/events.md) and takes the corner's normal. Too small: a corner hit can
 // fall between the two edges meeting there through rounding and the vertex pass into the body;
 // too large: contacts near (not at) a corner get the corner normal. It stays far below
 // kOverlapBoundUlps, so that a corner contact judged not entering overlaps less than the bound.

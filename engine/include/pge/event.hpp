@@ -55,7 +55,7 @@ template <class T> struct CollisionInfo {
   bool at_start_overlap = false;  // collided by the overlap rule
   // VertexEdge / EdgeVertex only: the vertex met the edge at one of its ends, a vertex against a
   // vertex (corner on corner, or parallel edges meeting end to end). `normal` is then the
-  // corner normal (README, "What an event means"), not the edge's.
+  // corner normal (docs/events.md), not the edge's.
   bool corner = false;
 };
 
