@@ -335,12 +335,12 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+  } catch (const CLI::CallForHelp& e) {  // help and version on the real standard output (stdout.hpp)
+    return app.exit(e, pge::cli::pge_stdout());
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return app.exit(e, pge::cli::pge_stdout());
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return app.exit(e, pge::cli::pge_stdout());
   } catch (const CLI::ParseError& e) {
     fmt::print(stderr, "pge: {} (see --help)\n", e.what());
     return kExitUsage;

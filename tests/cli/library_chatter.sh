@@ -17,4 +17,11 @@ grep -q "UNLUCKY PRIME !!" "$dir/out" && fail "CGAL's chatter is on stdout: $(he
 grep -q "UNLUCKY PRIME !!" "$dir/err" ||
   fail "CGAL no longer reports an unlucky prime on this scene (the test needs another); stderr: $(cat "$dir/err")"
 python3 -c 'import json, sys; json.load(open(sys.argv[1]))' "$dir/out" || fail "stdout is not the JSON alone"
-echo "ok: CGAL's UNLUCKY PRIME on stderr, stdout the JSON alone"
+# The other way round: sending std::cout to stderr sent --help and --version there too, so
+# `pge --help | less` showed nothing. They belong on stdout.
+for args in "--help" "run --help" "--version"; do
+  # shellcheck disable=SC2086
+  "$pge" $args > "$dir/out" 2> "$dir/err" || fail "pge $args exited with $?"
+  [[ -s $dir/out && ! -s $dir/err ]] || fail "pge $args: stdout $(wc -c < "$dir/out") bytes, stderr $(wc -c < "$dir/err") bytes"
+done
+echo "ok: CGAL's UNLUCKY PRIME on stderr, stdout the JSON alone; --help and --version on stdout"
