@@ -252,7 +252,8 @@ template <class T> struct World<T>::Impl {
   // The time of a turning-overlap contact of two circles (roots.hpp), the first local maximum
   // of their exact contact polynomial after `now`: a crossing of its derivative from positive
   // to negative, correctly rounded from the exact paths like every other event time.
-  std::optional<T> refined_turn(const Scheduled<T>& s, const T& predicted) const {
+  // `poly`: their exact contact polynomial in tau = t - now (refine::exact_circle_poly).
+  std::optional<T> refined_turn(const detail::exact::IntPoly& poly, const T& predicted) const {
     struct SlopeSign {
       detail::exact::IntPoly slope;
       refine::Exact now;
@@ -261,9 +262,7 @@ template <class T> struct World<T>::Impl {
         return exact(dt == T(0) ? refine::Exact::of(t) : refine::Exact::of(t) + refine::Exact::of(dt));
       }
     };
-    const refine::Exact t_now = refine::Exact::of(now);
-    SlopeSign sign{detail::exact::derivative(refine::exact_circle_poly(exact_of(bodies[s.lo]), exact_of(bodies[s.hi]), t_now)),
-                   t_now};
+    SlopeSign sign{detail::exact::derivative(poly), refine::Exact::of(now)};
     return refine::correctly_rounded_crossing(predicted, now, sign);
   }
 
@@ -282,7 +281,7 @@ template <class T> struct World<T>::Impl {
     const Exact t_now = Exact::of(now);
     const detail::exact::IntPoly poly = refine::exact_circle_poly(exact_of(bodies[r.lo]), exact_of(bodies[r.hi]), t_now);
     if (poly.degree < 2 || !(poly.c[0] < 0) || !(poly.c[1] > 0)) return std::nullopt;
-    const std::optional<T> m = refined_turn(r, std::max(hint, now));
+    const std::optional<T> m = refined_turn(poly, std::max(hint, now));
     if (!m || !(*m >= now)) return std::nullopt;
     const T after = boost::math::float_next(*m);
     const Exact tau1 = Exact::of(after) - t_now;
@@ -320,7 +319,9 @@ template <class T> struct World<T>::Impl {
       // A crossing, a turn found overlapping, or a turn exactly touching (a double root of the
       // contact function: no crossing to find, the turn's time is its derivative's crossing).
       std::optional<T> u = c->at_start_overlap ? std::nullopt : refined_time(r);
-      if (!u && overlapping) u = refined_turn(r, c->time);
+      if (!u && overlapping)
+        u = refined_turn(refine::exact_circle_poly(exact_of(bodies[r.lo]), exact_of(bodies[r.hi]), refine::Exact::of(now)),
+                         c->time);
       if (u) r.time = std::max(now, *u);
     }
     return true;
@@ -365,9 +366,11 @@ template <class T> struct World<T>::Impl {
       // one rounding and receding exactly), or the contact is the turning-overlap rule's, a
       // turning point of the rounded prediction. They are predicted again from the exact
       // polynomial, both overlap rules included; if they never touch, the owner's next
-      // contact is scheduled instead.
-      bool again = s.contact == ContactKind::CircleCircle && s.at_start_overlap && s.time > now;
-      if (!again) {
+      // contact is scheduled instead. The turning-overlap rule's contact of other pairs has no
+      // crossing to refine and keeps its time.
+      const bool turn = s.at_start_overlap && s.time > now;
+      bool again = turn && s.contact == ContactKind::CircleCircle;
+      if (!turn) {
         const std::optional<T> t = refined_time(s);
         if (t && (*t > now || s.contact != ContactKind::CircleCircle)) r.time = std::max(now, *t);
         else again = s.contact == ContactKind::CircleCircle;
