@@ -391,12 +391,20 @@ template <class T> class ContactSigner {
 
 // Relative closeness below which a closest approach counts as a near-graze: far above the
 // rounding of the polynomial (a few hundred ulps of its scale), far below any real miss.
+// 2^-36 leaves double 2^16 ulps for the rounding, but lies below float's own (2^-23), where a
+// graze within rounding would be the rounding's call again (issue 23's audit): so it is
+// 2^-36 or kNearGrazeUlps ulps of T, whichever is larger. float: 2^-15; double, long double and
+// quad: 2^-36.
 inline constexpr double kNearGrazeRelative = 0x1p-36;
+inline constexpr double kNearGrazeUlps = 256;
+template <class T> T near_graze_relative() {
+  return std::max(T(kNearGrazeRelative), T(kNearGrazeUlps) * std::numeric_limits<T>::epsilon());
+}
 
 // Whether the rounded function p = |d + dv t + da t^2 / 2|^2 - r^2 comes within rounding of
 // zero at a local minimum in (0, horizon], or starts within rounding of zero while approaching
-// or receding by less than 2^-36 of its relative speed (p'(0) = 2 d.dv against 2 |d| |dv|): a
-// touching pair whose approach is the rounding's call. That includes the ever smaller
+// or receding by less than near_graze_relative of its relative speed (p'(0) = 2 d.dv against
+// 2 |d| |dv|): a touching pair whose approach is the rounding's call. That includes the ever smaller
 // residues a cascade of hand-overs leaves (relative speeds of 1e-16, 1e-32, ...), which the
 // robust solver's degree reduction would drop as negligible. `scale` is the pair's coordinate
 // magnitude.
@@ -411,9 +419,9 @@ bool near_graze(const Poly<T>& p, const Vec2<T>& d, const Vec2<T>& dv, const Vec
     const T rs = r + scale;
     return T(4) * (dot(d, d) + rs * rs + dot(dv, dv) * (t * t) + dot(da, da) * (t * t * t * t / T(4)));
   };
-  const auto close = [&](const T& t) { return abs(p(t)) <= T(kNearGrazeRelative) * reach2(t); };
-  if (abs(p.c[0]) <= T(kNearGrazeRelative) * reach2(T(0)) &&
-      p.c[1] <= T(2 * kNearGrazeRelative) * sqrt(dot(d, d) * dot(dv, dv)))
+  const T relative = near_graze_relative<T>();
+  const auto close = [&](const T& t) { return abs(p(t)) <= relative * reach2(t); };
+  if (abs(p.c[0]) <= relative * reach2(T(0)) && p.c[1] <= T(2) * relative * sqrt(dot(d, d) * dot(dv, dv)))
     return true;
   if (p.degree == 2) {
     if (!(p.c[2] > T(0)) || !(p.c[1] < T(0))) return false;
@@ -431,28 +439,28 @@ bool near_graze(const Poly<T>& p, const Vec2<T>& d, const Vec2<T>& dv, const Vec
   return found;
 }
 
-// The exact contact polynomial of two circles in tau = t - now (a positive multiple of it, in
-// integers): |pb(now + tau) - pa(now + tau)|^2 - (ra + rb)^2 from the exact paths.
-template <class T>
-detail::exact::IntPoly exact_circle_poly(const ExactBody<T>& a, const ExactBody<T>& b, const Exact& now) {
-  // Each path in tau: c0 + c1 tau + c2 tau^2 with D = now - t0: c0 = p(now), c1 = v0 + acc D, c2 = acc / 2.
-  const auto path = [&](const ExactBody<T>& x, ExactVec c[3]) {
-    c[0] = x.position(now);
-    if (x.fixed) return;
-    const Exact dt = now - x.t0;
-    c[1] = x.v0 + x.half_acc * dt + x.half_acc * dt;
-    c[2] = x.half_acc;
-  };
-  ExactVec ca[3], cb[3], d[3];
-  path(a, ca);
-  path(b, cb);
-  for (int k = 0; k < 3; ++k) d[k] = cb[k] - ca[k];
-  Exact f[5];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) f[i + j] = f[i + j] + dot(d[i], d[j]);
-  const Exact rr = Exact::of(a.shape->radius) + Exact::of(b.shape->radius);
-  f[0] = f[0] - rr * rr;
-  // Scale to integers: every coefficient times 2^-(least exponent).
+// A point's exact path in tau = t - now: c[0] + c[1] tau + c[2] tau^2, with D = now - t0:
+// c0 = p(now), c1 = v0 + acc D, c2 = acc / 2 (a fixed body's points stay put). `offset`: a
+// vertex's place in the body (its local vertex, or for a fixed shape its world vertex).
+template <class T> void exact_point_path(const ExactBody<T>& x, const Exact& now, ExactVec c[3]) {
+  c[0] = x.position(now);
+  c[1] = ExactVec{};
+  c[2] = ExactVec{};
+  if (x.fixed) return;
+  const Exact dt = now - x.t0;
+  c[1] = x.v0 + x.half_acc * dt + x.half_acc * dt;
+  c[2] = x.half_acc;
+}
+
+// The same for vertex k of a body.
+template <class T> void exact_vertex_path(const ExactBody<T>& x, std::size_t k, const Exact& now, ExactVec c[3]) {
+  exact_point_path(x, now, c);
+  c[0] = x.vertex(c[0], k);
+}
+
+// Exact coefficients f[0..4] as a polynomial in integers (every coefficient times
+// 2^-(least exponent): a positive multiple, with the same roots and signs).
+inline detail::exact::IntPoly integer_poly(const Exact (&f)[5]) {
   detail::exact::IntPoly out;
   long low = 0;
   bool any = false;
@@ -466,6 +474,78 @@ detail::exact::IntPoly exact_circle_poly(const ExactBody<T>& a, const ExactBody<
   out.degree = 4;
   while (out.degree > 0 && out.c[out.degree] == 0) --out.degree;
   return out;
+}
+
+// |d(tau)|^2 - rr^2 for the difference d of two point paths.
+inline detail::exact::IntPoly exact_distance_poly(const ExactVec (&d)[3], const Exact& rr) {
+  Exact f[5];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) f[i + j] = f[i + j] + dot(d[i], d[j]);
+  f[0] = f[0] - rr * rr;
+  return integer_poly(f);
+}
+
+// The exact contact polynomial of two circles in tau = t - now (a positive multiple of it, in
+// integers): |pb(now + tau) - pa(now + tau)|^2 - (ra + rb)^2 from the exact paths.
+template <class T>
+detail::exact::IntPoly exact_circle_poly(const ExactBody<T>& a, const ExactBody<T>& b, const Exact& now) {
+  ExactVec ca[3], cb[3], d[3];
+  exact_point_path(a, now, ca);
+  exact_point_path(b, now, cb);
+  for (int k = 0; k < 3; ++k) d[k] = cb[k] - ca[k];
+  return exact_distance_poly(d, Exact::of(a.shape->radius) + Exact::of(b.shape->radius));
+}
+
+// The exact contact function of a scheduled pair other than two circles, as a polynomial in
+// tau = t - now (a positive multiple of it, in integers) with contact_sign's sign wherever it
+// applies: circle-vertex |q|^2 - r^2 (degree 4); vertex-edge the cross product (degree 2);
+// circle-edge side^2 - r^2 |e|^2 (degree 4), which is contact_sign's function while the centre
+// stays on the side of the edge's line it is on at now (a segment is two-sided, so there
+// always; a polygon's edge only in front: nothing if the centre is on or behind its line at now,
+// where contact_sign is -1 and no polynomial is).
+template <class T>
+std::optional<detail::exact::IntPoly> exact_feature_poly(const ExactBody<T>& a, const ExactBody<T>& b,
+                                                         const Scheduled<T>& s, const Exact& now) {
+  switch (s.contact) {
+    case ContactKind::CircleCircle: return exact_circle_poly(a, b, now);
+    case ContactKind::CircleEdge:
+    case ContactKind::CircleVertex: {
+      const bool a_circle = a.shape->kind == ShapeKind::Circle;
+      const ExactBody<T>& c = a_circle ? a : b;
+      const ExactBody<T>& o = a_circle ? b : a;
+      const std::size_t k = a_circle ? s.feature_b : s.feature_a;
+      ExactVec pc[3], pv[3], q[3];
+      exact_point_path(c, now, pc);
+      exact_vertex_path(o, k, now, pv);
+      for (int i = 0; i < 3; ++i) q[i] = pc[i] - pv[i];
+      const Exact r = Exact::of(c.shape->radius);
+      if (s.contact == ContactKind::CircleVertex) return exact_distance_poly(q, r);
+      const ExactVec e = o.edge(k);
+      Exact side[3], f[5];
+      for (int i = 0; i < 3; ++i) side[i] = cross(q[i], e);
+      if (o.shape->kind == ShapeKind::Polygon && side[0].sign() <= 0) return std::nullopt;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) f[i + j] = f[i + j] + side[i] * side[j];
+      f[0] = f[0] - r * r * dot(e, e);
+      return integer_poly(f);
+    }
+    case ContactKind::VertexEdge:
+    case ContactKind::EdgeVertex: {
+      const bool a_vertex = s.contact == ContactKind::VertexEdge;
+      const ExactBody<T>& vb = a_vertex ? a : b;
+      const ExactBody<T>& eb = a_vertex ? b : a;
+      const std::size_t k = a_vertex ? s.feature_a : s.feature_b;
+      const std::size_t j = a_vertex ? s.feature_b : s.feature_a;
+      ExactVec pv[3], pe[3];
+      exact_vertex_path(vb, k, now, pv);
+      exact_vertex_path(eb, j, now, pe);
+      const ExactVec e = eb.edge(j);
+      Exact f[5];
+      for (int i = 0; i < 3; ++i) f[i] = cross(pv[i] - pe[i], e);
+      return integer_poly(f);
+    }
+  }
+  return std::nullopt;
 }
 
 // Doublings of the step before the walk gives up (the prediction is then kept as it is).

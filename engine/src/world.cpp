@@ -164,6 +164,9 @@ template <class T> struct World<T>::Impl {
       const T r = a.shape.radius + b.shape.radius;
       const Poly<T> p = distance_poly(d, dv, da, r);
       if (refine::near_graze(p, d, dv, da, r, pair_scale(a.shape, ka.p, b.shape, kb.p), horizon - now)) {
+        if constexpr (std::is_same_v<T, float>) {
+          if (const std::optional<std::optional<PredictedContact<T>>> wide = wide_circle_prediction(a, b)) return *wide;
+        }
         bool overlapping = false;
         auto exact = exact_circle_prediction(a, b, overlapping);
         // Overlapping (by round-off) and receding: no crossing to find exactly, and the
@@ -180,6 +183,45 @@ template <class T> struct World<T>::Impl {
     // still be before it (refine_near_top decides).
     if (c->time > (solver == SolverKind::Fast ? horizon : refine_bound(horizon))) return std::nullopt;
     return c;
+  }
+
+  // A float near-graze of two circles predicted again from their contact polynomial built in
+  // double from the same stored paths: the stored floats are exact in double, so its rounding
+  // is 2^29 times smaller than float's, and double's own near-graze test (2^-36, far above that
+  // rounding) tells whether it decides the pair; if not (nothing), the exact paths must. A float
+  // near-graze is anything within 2^-15 of the pair's scale (refine::near_graze_relative): the
+  // exact solver deciding them all made a float gas of 1,000 discs four times as slow
+  // (fixtures/scenes/basics/gas-1000.json, 4.4 s to 18 s; 2.7 s through double). The time is
+  // rounded to float from double (refine_near_top rounds it once from the exact paths).
+  std::optional<std::optional<PredictedContact<T>>> wide_circle_prediction(const Body& a, const Body& b) const {
+    using W = double;
+    const W t_now = W(now);
+    const auto wide = [](const Vec2<T>& v) { return Vec2<W>{W(v.x), W(v.y)}; };
+    struct Motion {
+      Vec2<W> displacement, v, acc;
+    };
+    const auto motion = [&](const Body& x) {
+      if (x.fixed) return Motion{};
+      const W tau = t_now - W(x.t0);
+      const Vec2<W> v0 = wide(x.v0), acc = wide(x.acc);
+      return Motion{v0 * tau + acc * (tau * tau / W(2)), v0 + acc * tau, acc};
+    };
+    const Motion ma = motion(a), mb = motion(b);
+    const Vec2<W> d = (wide(b.p0) - wide(a.p0)) + (mb.displacement - ma.displacement);
+    const Vec2<W> dv = mb.v - ma.v, da = mb.acc - ma.acc;
+    const W r = W(a.shape.radius) + W(b.shape.radius);
+    const Poly<W> p = distance_poly(d, dv, da, r);
+    const W window = W(horizon) - t_now;
+    const auto scale = [&](const Body& x, const Motion& m) {  // BodyShape::coordinate_scale
+      const Vec2<W> at = wide(x.p0) + m.displacement;
+      return std::max(std::abs(at.x), std::abs(at.y)) + W(x.shape.span);
+    };
+    if (refine::near_graze(p, d, dv, da, r, std::max(scale(a, ma), scale(b, mb)), window)) return std::nullopt;
+    const std::optional<PredictedContact<W>> c = circle_pair_contact(solver, p, window);
+    if (!c) return std::optional<PredictedContact<T>>{};
+    PredictedContact<T> out{T(t_now + c->time), ContactKind::CircleCircle, 0, 0, c->at_start_overlap};
+    if (out.time > refine_bound(horizon)) return std::optional<PredictedContact<T>>{};
+    return std::optional<PredictedContact<T>>{out};
   }
 
   // b's position minus a's at `now`, like terms first: the stored positions cancel before the
@@ -235,24 +277,39 @@ template <class T> struct World<T>::Impl {
     if (!turns && overlapping &&
         detail::exact::sign_just_after(detail::exact::derivative(poly), detail::exact::Dyadic{}) >= 0)
       return std::nullopt;
-    // Up to the refinement bound past the horizon: now + tau is rounded, and the exact time may
-    // still be the horizon (refine_near_top rounds it once, from the exact paths).
+    const std::optional<ExactRoot> root = exact_first_contact(std::move(poly));
+    if (!root) return std::nullopt;
+    return PredictedContact<T>{root->time, ContactKind::CircleCircle, 0, 0, root->overlap};
+  }
+
+  // The first contact of a pair whose exact contact polynomial in tau = t - now is `poly`
+  // (refine.hpp), the overlap rule and the turning-overlap rule (roots.hpp) included, isolated
+  // by the exact solver: its time now + tau (so rounded twice) and overlap flag. Up to the
+  // refinement bound past the horizon (the exact time may still be the horizon, and
+  // refine_near_top rounds it once, from the exact paths); nothing if none before it.
+  struct ExactRoot {
+    T time;
+    bool overlap;
+    bool turn;  // the turning-overlap rule's contact (ExactSolver::turned)
+  };
+  std::optional<ExactRoot> exact_first_contact(detail::exact::IntPoly poly) const {
     detail::exact::ExactSolver<T> exact(std::move(poly), detail::exact::Dyadic{},
                                         detail::exact::to_dyadic(T(refine_bound(horizon) - now)));
-    std::optional<PredictedContact<T>> out;
+    std::optional<ExactRoot> out;
     auto visit = [&](const T& tau, bool overlap) {
-      out = PredictedContact<T>{now + tau, ContactKind::CircleCircle, 0, 0, overlap};
+      out = ExactRoot{now + tau, overlap, false};
       return true;
     };
     exact.visit(StartRule::OverlapCollides, 0, visit);
+    if (out) out->turn = exact.turned();
     if (out && out->time > refine_bound(horizon)) return std::nullopt;
     return out;
   }
 
-  // The time of a turning-overlap contact of two circles (roots.hpp), the first local maximum
-  // of their exact contact polynomial after `now`: a crossing of its derivative from positive
-  // to negative, correctly rounded from the exact paths like every other event time.
-  // `poly`: their exact contact polynomial in tau = t - now (refine::exact_circle_poly).
+  // The time of a turning-overlap contact (roots.hpp), the first local maximum of the pair's
+  // exact contact polynomial after `now`: a crossing of its derivative from positive to
+  // negative, correctly rounded from the exact paths like every other event time.
+  // `poly`: the exact contact polynomial in tau = t - now (refine::exact_feature_poly).
   std::optional<T> refined_turn(const detail::exact::IntPoly& poly, const T& predicted) const {
     struct SlopeSign {
       detail::exact::IntPoly slope;
@@ -266,20 +323,19 @@ template <class T> struct World<T>::Impl {
     return refine::correctly_rounded_crossing(predicted, now, sign);
   }
 
-  // The turning-overlap rule's contact of two circles, decided without the exact solver where
-  // it can be: in a storm of a pair pressed together (each contact leaves it overlapping by
-  // round-off and receding at rounding speed, and the Sturm chains cost 2 ms a contact) the
-  // contact function P(tau) of the exact paths is concave from 0 to just past its turn. With
+  // The turning-overlap rule's contact, decided without the exact solver where it can be: in a
+  // storm of a pair pressed together (each contact leaves it overlapping by round-off and
+  // receding at rounding speed, and the Sturm chains cost 2 ms a contact) the contact function
+  // P(tau) of the exact paths (`poly`) is concave from 0 to just past its turn. With
   //   P(0) < 0 and P'(0) > 0 (overlapping, receding), the turn's correctly rounded time m from
   //   P''s crossing nearest `hint` (refined_turn), tau1 = the next T after m, minus now,
   //   P'(tau1) <= 0 and P'' < 0 on [0, tau1] (bounded above by its Taylor terms at 0),
   // P' falls on [0, tau1] and has one root there, the first maximum of P, and P stays below
   // P(0) + P'(0) tau1 up to it: if that is negative the pair turns back overlapping, at m.
   // Every test is an exact sign; nothing when one fails (the exact solver decides).
-  std::optional<T> concave_turn(const Scheduled<T>& r, const T& hint) const {
+  std::optional<T> concave_turn(const detail::exact::IntPoly& poly, const T& hint) const {
     using refine::Exact;
     const Exact t_now = Exact::of(now);
-    const detail::exact::IntPoly poly = refine::exact_circle_poly(exact_of(bodies[r.lo]), exact_of(bodies[r.hi]), t_now);
     if (poly.degree < 2 || !(poly.c[0] < 0) || !(poly.c[1] > 0)) return std::nullopt;
     const std::optional<T> m = refined_turn(poly, std::max(hint, now));
     if (!m || !(*m >= now)) return std::nullopt;
@@ -300,31 +356,68 @@ template <class T> struct World<T>::Impl {
     return m;
   }
 
-  // A contact of two circles decided again from their exact polynomial, the overlap and
-  // turning-overlap rules included, its time rounded once from the exact paths (now + tau is
-  // rounded twice): r's time and overlap flag. False if the pair does not touch before the
-  // refinement bound.
-  bool exact_circle_contact(Scheduled<T>& r, const T& hint) {
-    if (const std::optional<T> t = concave_turn(r, hint)) {
-      r.at_start_overlap = true;
-      r.time = *t;
-      return true;
+  // What deciding a scheduled contact again from the exact paths found.
+  enum class Exactly : std::uint8_t {
+    Contact,  // the pair's first contact, the overlap rules included, its time rounded once
+    None,     // no contact of the pair (of two circles) or of its feature pair before the bound
+    Unknown,  // not decided exactly (see exact_contact)
+  };
+
+  // A scheduled contact decided again from the exact contact polynomial of its feature pair
+  // (refine::exact_feature_poly), the overlap and turning-overlap rules included, its time
+  // rounded once from the exact paths (now + tau is rounded twice): r's time and overlap flag
+  // on Contact. Not decided (Unknown) for a circle on or behind a polygon edge's line (no
+  // polynomial is its function there), nor when the contact found lies off the scheduled
+  // feature (the centre or vertex beyond the edge's ends, a vertex's business: predicting
+  // again from the rounded state would schedule the same contact again), where the caller keeps
+  // the rounded time. `hint`: the rounded time, where the walks start.
+  Exactly exact_contact(Scheduled<T>& r, const T& hint) {
+    const refine::Exact t_now = refine::Exact::of(now);
+    const std::optional<detail::exact::IntPoly> poly =
+        refine::exact_feature_poly(exact_of(bodies[r.lo]), exact_of(bodies[r.hi]), r, t_now);
+    if (!poly) return Exactly::Unknown;
+    Scheduled<T> out = r;
+    if (const std::optional<T> t = concave_turn(*poly, hint)) {
+      out.at_start_overlap = true;
+      out.time = *t;
+    } else {
+      ++counts.exact_predictions;
+      const std::optional<ExactRoot> c = exact_first_contact(*poly);
+      if (!c) return Exactly::None;
+      out.at_start_overlap = c->overlap;
+      out.time = c->time;
+      if (c->time > now) {
+        // A crossing, or a turn, overlapping or exactly touching (a double root of the contact
+        // function: no crossing to find); a turn's time is its derivative's crossing.
+        const std::optional<T> u = c->turn ? refined_turn(*poly, c->time) : refined_time(out);
+        if (u) out.time = std::max(now, *u);
+      }
     }
-    bool overlapping = false;
-    const auto c = exact_circle_prediction(bodies[r.lo], bodies[r.hi], overlapping, true);
-    if (!c) return false;
-    r.at_start_overlap = c->at_start_overlap;
-    r.time = c->time;
-    if (c->time > now) {
-      // A crossing, a turn found overlapping, or a turn exactly touching (a double root of the
-      // contact function: no crossing to find, the turn's time is its derivative's crossing).
-      std::optional<T> u = c->at_start_overlap ? std::nullopt : refined_time(r);
-      if (!u && overlapping)
-        u = refined_turn(refine::exact_circle_poly(exact_of(bodies[r.lo]), exact_of(bodies[r.hi]), refine::Exact::of(now)),
-                         c->time);
-      if (u) r.time = std::max(now, *u);
-    }
-    return true;
+    if (!on_feature(out)) return Exactly::Unknown;
+    r = out;
+    return Exactly::Contact;
+  }
+
+  // Whether the scheduled contact's point lies on its features at its time (in T, as the
+  // prediction accepts it): the circle's centre or the vertex projects onto the edge.
+  bool on_feature(const Scheduled<T>& s) const {
+    if (s.contact == ContactKind::CircleCircle || s.contact == ContactKind::CircleVertex) return true;
+    const Body& a = bodies[s.lo];
+    const Body& b = bodies[s.hi];
+    const Kinematics<T> ka = kinematics(a, s.time), kb = kinematics(b, s.time);
+    const bool a_edge = s.contact == ContactKind::EdgeVertex ||
+                        (s.contact == ContactKind::CircleEdge && a.shape.kind != ShapeKind::Circle);
+    const Body& eb = a_edge ? a : b;
+    const Body& pb = a_edge ? b : a;
+    const Kinematics<T>& ke = a_edge ? ka : kb;
+    const Kinematics<T>& kp = a_edge ? kb : ka;
+    const std::size_t j = a_edge ? s.feature_a : s.feature_b;
+    const Vec2<T> point = s.contact == ContactKind::CircleEdge
+                              ? kp.p
+                              : pb.shape.vertex(kp.p, a_edge ? s.feature_b : s.feature_a);
+    const Vec2<T> e = eb.shape.edges[j];
+    const T along = dot(point - eb.shape.vertex(ke.p, j), e);
+    return along >= T(0) && along <= dot(e, e);
   }
 
   // Exact times for certified events (refine.hpp). A prediction from the rounded state can be
@@ -333,10 +426,9 @@ template <class T> struct World<T>::Impl {
   // kRefineWindowRelative of it are re-derived exactly (a contact whose partner has changed is
   // predicted again instead). Returns true if anything changed (the caller merges again).
   // Overlap-rule contacts at `now` are checked too (the rounded state may overlap where the
-  // exact paths are still an ulp apart). The turning-overlap rule's contact (later than now) of
-  // two circles is decided again from the exact polynomial and its turning point correctly
-  // rounded (refined_turn); of other pairs it is a turning point of the rounded prediction and
-  // keeps its time (issue 23: not yet re-derived exactly).
+  // exact paths are still an ulp apart). The turning-overlap rule's contact (later than now) is
+  // decided again from the exact polynomial of its feature pair and its turning point correctly
+  // rounded (refined_turn).
   // The latest time whose contacts may be exactly as early as t (kRefineWindowRelative).
   static T refine_bound(const T& t) {
     using std::abs;
@@ -360,22 +452,27 @@ template <class T> struct World<T>::Impl {
       }
       Scheduled<T> r = s;
       r.refined = true;
-      // Two circles the rounded state may have misjudged: the exact paths do not cross near
-      // the predicted time, or already touch at `now` (where only an approaching pair
-      // collides: the rounded state may have invented the contact, a pair left overlapping by
-      // one rounding and receding exactly), or the contact is the turning-overlap rule's, a
-      // turning point of the rounded prediction. They are predicted again from the exact
-      // polynomial, both overlap rules included; if they never touch, the owner's next
-      // contact is scheduled instead. The turning-overlap rule's contact of other pairs has no
-      // crossing to refine and keeps its time.
+      // A contact the rounded state may have misjudged: the exact paths do not cross near the
+      // predicted time, or already touch at `now` (where only an approaching pair collides:
+      // the rounded state may have invented the contact, a pair left overlapping by one
+      // rounding and receding exactly), or the contact is the turning-overlap rule's, a
+      // turning point of the rounded prediction (whose sign there, and so whether the pair
+      // separates first, is the rounding's call). It is decided again from the exact
+      // polynomial of its feature pair, both overlap rules included (exact_contact); two
+      // circles that never touch are excluded, and the owner's next contact is scheduled
+      // instead. What exact_contact leaves undecided keeps the rounded decision, and so does a
+      // feature pair that never touches (its bodies may still meet at another feature).
       const bool turn = s.at_start_overlap && s.time > now;
-      bool again = turn && s.contact == ContactKind::CircleCircle;
+      bool again = turn;
       if (!turn) {
         const std::optional<T> t = refined_time(s);
-        if (t && (*t > now || s.contact != ContactKind::CircleCircle)) r.time = std::max(now, *t);
-        else again = s.contact == ContactKind::CircleCircle;
+        if (t && *t > now) r.time = *t;
+        else {
+          if (t) r.time = now;
+          again = true;
+        }
       }
-      if (again && !exact_circle_contact(r, s.time)) {
+      if (again && exact_contact(r, s.time) == Exactly::None && s.contact == ContactKind::CircleCircle) {
         Body& x = bodies[i];
         const Body& y = bodies[s.partner];
         x.no_contact_with = s.partner;

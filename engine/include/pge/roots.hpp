@@ -95,8 +95,10 @@ template <class T, class Visit>
 Turning visit_turning_overlap(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Visit& visit, T& after,
                               bool guarded) {
   if (rule != StartRule::OverlapCollides || !(lo < hi)) return Turning::None;
-  // Apart at lo: p(lo) > 0, or (guarded) certainly so, by its error bound.
-  const Evaluation<T> at_lo = guarded ? evaluate_with_bound(p, lo) : Evaluation<T>{p(lo), T(0)};
+  // Apart at lo: p(lo) > 0, or (guarded) certainly so, by its error bound; at lo = 0 (every
+  // prediction) p(lo) is c0, exactly.
+  const Evaluation<T> at_lo =
+      guarded && lo != T(0) ? evaluate_with_bound(p, lo) : Evaluation<T>{p(lo), T(0)};
   if (at_lo.value > at_lo.bound) return Turning::None;
   const Poly<T> d1 = p.derivative();
   if (sign_just_after(d1, lo) < 0) return Turning::None;

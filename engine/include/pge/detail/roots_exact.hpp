@@ -284,6 +284,7 @@ template <class T> class ExactSolver {
 
   template <class Visit> bool visit(StartRule rule, int skip, Visit& visit) {
     skip_ = skip;
+    turned_ = false;
     if (p_.degree == 0) return false;
     const int s0 = sign_at(p_, lo_);
     const int rising = sign_just_after(derivative(p_), lo_);
@@ -336,8 +337,18 @@ template <class T> class ExactSolver {
       at_max = roots == 0 ? -1 : (roots == 1 ? 0 : 1);
     }
     if (at_max > 0) return false;  // apart at the maximum: an ordinary crossing follows
-    return emit(visit, t, at_max < 0);
+    turned_ = true;
+    if (emit(visit, t, at_max < 0)) return true;
+    turned_ = false;
+    return false;
   }
+
+ public:
+  // Whether the last root visited was the turning-overlap rule's (a local maximum of p, where p
+  // is negative or, a double root, zero): its time is p''s crossing, not p's.
+  bool turned() const { return turned_; }
+
+ private:
 
 
   template <class Visit> bool emit(Visit& visit, const T& t, bool overlap) {
@@ -419,6 +430,7 @@ template <class T> class ExactSolver {
   Dyadic lo_, hi_;
   SturmChain chain_;
   int skip_ = 0;
+  bool turned_ = false;
   Dyadic right_;  // first_crossing's bracket end: the last root emitted (one_root, exact_root)
   bool right_exact_ = false;
 };
