@@ -217,6 +217,7 @@ std::vector<std::string> failure_reasons(const SceneCheck& c) {
   const auto n = verdict_counts(c);
   for (const oracle::Verdict v : {oracle::Verdict::Miss, oracle::Verdict::Phantom})
     if (const auto k = n[static_cast<std::size_t>(v)]; k > 0) why.push_back(fmt::format("{} {}", k, oracle::verdict_name(v)));
+  if (!c.tunnels.empty()) why.push_back(fmt::format("{} tunnelled", c.tunnels.size()));
   return why;
 }
 
@@ -255,6 +256,8 @@ void print_summary(const SceneCheck& c, const Scene& s) {
     fmt::print("  events: {} contact events, not judged (the expect block says \"oracle\": false)\n", c.contact_events);
   }
   print_totals(c);
+  if (!c.tunnels.empty())
+    fmt::print("  tunnelling: {} {} passed through a fixed body\n", c.tunnels.size(), c.tunnels.size() == 1 ? "body" : "bodies");
   print_expectations(c.expect);
   std::size_t shown = 0;
   for (const EventRecord& r : c.events)
@@ -296,6 +299,9 @@ nlohmann::json summary_json(const SceneCheck& c, const Scene& s) {
   j["momentum_start"] = {c.momentum_start.x, c.momentum_start.y};
   j["momentum_end"] = {c.momentum_end.x, c.momentum_end.y};
   j["largest_contact_overlap_relative"] = c.largest_contact_overlap;
+  j["tunnels"] = nlohmann::json::array();
+  for (const Tunnel& t : c.tunnels)
+    j["tunnels"].push_back({{"body", id_of(s, t.body)}, {"fixed", id_of(s, t.fixed)}, {"from", t.from}, {"to", t.to}});
   nlohmann::json& e = j["expectations"];
   e["enforcement"] = enforcement_name(c.expect.enforcement);
   if (!c.expect.why.empty()) e["why"] = c.expect.why;

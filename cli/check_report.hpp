@@ -58,6 +58,8 @@ struct SceneCheck {
   // The engine's largest overlap at a contact as a fraction of the contact distance
   // (World::largest_contact_overlap: the contact deepest in rounding units).
   double largest_contact_overlap = 0;
+  // The bodies that passed through a fixed body (World::tunnels(), pge/tunnel.hpp).
+  std::vector<Tunnel> tunnels;
   ExpectOutcome expect;
   bool end_checked = false;  // the run reached its horizon and the oracle looked for leftovers
   oracle::EndJudgement end;
@@ -77,7 +79,7 @@ double energy_relative_change(const SceneCheck& c);
 double momentum_relative_drift(const SceneCheck& c);
 
 // Why the run fails (for a contrast run: would fail), as short reasons ("collisions[0]",
-// "stop (event-storm)", "2 miss"); empty when it passes.
+// "stop (event-storm)", "2 miss", "1 tunnelled"); empty when it passes.
 std::vector<std::string> failure_reasons(const SceneCheck& c);
 
 void print_summary(const SceneCheck& c, const Scene& scene);

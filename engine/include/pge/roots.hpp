@@ -18,6 +18,13 @@ namespace pge {
 enum class SolverKind : std::uint8_t { Fast, Robust, Certified };
 
 std::string_view solver_name(SolverKind kind);                  // "fast", "robust", "certified"
+
+// Whether a solver promises never to miss a collision (docs/solvers.md): robust and certified
+// find every earliest root (the oracle finds no miss on any bundled scene), so a body of theirs
+// that passes through a fixed body is a bug, which PGE_VALIDATE builds stop at (pge/tunnel.hpp).
+// Fast keeps the closed forms, which lose roots: it can tunnel, and that is measured (pge run
+// exit 11, the report's tunnelled count), not an engine failure.
+constexpr bool promises_every_collision(SolverKind kind) { return kind != SolverKind::Fast; }
 bool parse_solver_kind(std::string_view text, SolverKind& out);  // false if unknown
 
 // p(t) = c[0] + c[1] t + ... + c[4] t^4. `degree` is the index of the highest coefficient the
