@@ -103,6 +103,7 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   c.bodies = loaded.scene.bodies.size();
   c.scalar = std::string(scalar_name(ScalarTraits<T>::kind));
   c.solver = std::string(solver_name(world.solver()));
+  c.time_bound_ulps = promised_time_error_ulps(world.solver());
   c.filter = !opt.no_filter;
   // The block may turn the oracle off for the scene's own run; a shorter run is judged as always.
   const bool measured = expect.present && outcome.enforcement != Enforcement::Verdicts;
@@ -200,6 +201,9 @@ void report_run(const std::string& file, const LoadedScene& loaded, const SceneC
     for (const Tunnel& t : c.tunnels)
       fmt::print(stderr, "pge check: {}: {}: {}\n", file, c.solver,
                  tunnel_text(t, loaded.scene.bodies[t.body].id, loaded.scene.bodies[t.fixed].id));
+  if (c.expect.enforcement != Enforcement::Contrast && !c.expect.evaluated && past_time_bound(c) > 0)
+    fmt::print(stderr, "pge check: {}: {}: {} event times off by more than the {} ulps {} promises (largest {} ulps)\n",
+               file, c.solver, past_time_bound(c), *c.time_bound_ulps, c.solver, largest_abs_ulps(c));
 }
 
 // One scene, with one solver or all three: its exit code (0, or the first failure's).

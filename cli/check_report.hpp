@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -43,6 +44,9 @@ EventRecord make_record(std::uint64_t index, double time, const oracle::ExactEve
 
 struct SceneCheck {
   std::string path, name, scalar, solver, stop;
+  // The solver's promised bound on an event's time error in ulps (promised_time_error_ulps);
+  // nothing for fast, which promises none.
+  std::optional<long long> time_bound_ulps;
   StopReason stop_reason = StopReason::ReachedUntil;
   BodyIndex storm_a = kNoBody, storm_b = kNoBody;  // an event storm's two bodies
   std::size_t bodies = 0;
@@ -77,6 +81,10 @@ long long largest_abs_ulps(const SceneCheck& c);
 double energy_relative_change(const SceneCheck& c);
 // |P_end - P_start| / |P_start|, with the same conventions.
 double momentum_relative_drift(const SceneCheck& c);
+
+// The judged events whose time is further from the exact time than the solver promises (0
+// when it promises nothing).
+std::uint64_t past_time_bound(const SceneCheck& c);
 
 // Why the run fails (for a contrast run: would fail), as short reasons ("collisions[0]",
 // "stop (event-storm)", "2 miss", "1 tunnelled"); empty when it passes.

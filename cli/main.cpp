@@ -108,7 +108,8 @@ int main(int argc, char** argv) {
   CLI::App* check_cmd = app.add_subcommand(
       "check",
       "Run the engine on scenes, judge every event against the exact oracle and hold each run to its scene's expect "
-      "block; exit 7 on a miss, a phantom or a failed expectation.");
+      "block; exit 7 on a miss, a phantom, a body through a fixed body, an event time past the solver's promise "
+      "(robust, certified: 0 ulps) or a failed expectation.");
   check_cmd->footer(std::string(
       "Expectations (the scene's \"expect\" block, fixtures/README.md): enforced when the run's solver is among\n"
       "  the block's \"solvers\" (default robust, certified) and the run is the scene's own (no --until or\n"
