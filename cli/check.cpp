@@ -9,6 +9,7 @@
 #include "pge/oracle.hpp"
 #include "pge/scene_io.hpp"
 #include "pge/step_loop.hpp"
+#include "pge/tunnel.hpp"
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
@@ -93,6 +94,7 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   wo.max_events = opt.max_events;
   wo.solver = solver;
   wo.frames_per_second = 0;  // frames change nothing the oracle judges
+  wo.watch_tunnels = true;   // a body through a fixed body, as pge run finds it (pge/tunnel.hpp)
   World<T> world(loaded.scene, wo);
 
   SceneCheck c;
@@ -101,6 +103,7 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   c.bodies = loaded.scene.bodies.size();
   c.scalar = std::string(scalar_name(ScalarTraits<T>::kind));
   c.solver = std::string(solver_name(world.solver()));
+  c.time_bound_ulps = promised_time_error_ulps(world.solver());
   c.filter = !opt.no_filter;
   // The block may turn the oracle off for the scene's own run; a shorter run is judged as always.
   const bool measured = expect.present && outcome.enforcement != Enforcement::Verdicts;
@@ -150,6 +153,7 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
     c.final_states.push_back({vec_cast<double>(s.position), vec_cast<double>(s.velocity)});
   }
   c.largest_contact_overlap = to_double(world.largest_contact_overlap().relative);
+  c.tunnels = world.tunnels();
   c.expect = std::move(outcome);
   if (measured) evaluate(expect, loaded.scene, tracker, c, c.expect);
   return c;
@@ -193,6 +197,13 @@ void report_run(const std::string& file, const LoadedScene& loaded, const SceneC
     fmt::print(stderr, "pge check: {}: {}: the run stopped on an event storm at t = {:.17g} (bodies {})\n", file, c.solver,
                c.time, pair_text(loaded.scene, c.storm_a, c.storm_b));
   }
+  if (c.expect.enforcement != Enforcement::Contrast && !c.expect.evaluated)
+    for (const Tunnel& t : c.tunnels)
+      fmt::print(stderr, "pge check: {}: {}: {}\n", file, c.solver,
+                 tunnel_text(t, loaded.scene.bodies[t.body].id, loaded.scene.bodies[t.fixed].id));
+  if (c.expect.enforcement != Enforcement::Contrast && !c.expect.evaluated && past_time_bound(c) > 0)
+    fmt::print(stderr, "pge check: {}: {}: {} event times off by more than the {} ulps {} promises (largest {} ulps)\n",
+               file, c.solver, past_time_bound(c), *c.time_bound_ulps, c.solver, largest_abs_ulps(c));
 }
 
 // One scene, with one solver or all three: its exit code (0, or the first failure's).

@@ -207,6 +207,13 @@ double momentum_relative_drift(const SceneCheck& c) {
   return relative(std::hypot(d.x, d.y), std::hypot(c.momentum_start.x, c.momentum_start.y));
 }
 
+std::uint64_t past_time_bound(const SceneCheck& c) {
+  if (!c.time_bound_ulps) return 0;
+  return static_cast<std::uint64_t>(std::count_if(c.events.begin(), c.events.end(), [&c](const EventRecord& r) {
+    return r.has_exact_time && std::llabs(r.ulps) > *c.time_bound_ulps;
+  }));
+}
+
 std::vector<std::string> failure_reasons(const SceneCheck& c) {
   std::vector<std::string> why;
   if (c.expect.evaluated) {
@@ -217,6 +224,10 @@ std::vector<std::string> failure_reasons(const SceneCheck& c) {
   const auto n = verdict_counts(c);
   for (const oracle::Verdict v : {oracle::Verdict::Miss, oracle::Verdict::Phantom})
     if (const auto k = n[static_cast<std::size_t>(v)]; k > 0) why.push_back(fmt::format("{} {}", k, oracle::verdict_name(v)));
+  // A solver that breaks its own promise on a time is wrong even when no event was missed.
+  if (const auto k = past_time_bound(c); k > 0)
+    why.push_back(fmt::format("{} past the {}-ulp time bound", k, *c.time_bound_ulps));
+  if (!c.tunnels.empty()) why.push_back(fmt::format("{} tunnelled", c.tunnels.size()));
   return why;
 }
 
@@ -243,6 +254,9 @@ void print_summary(const SceneCheck& c, const Scene& s) {
                  "with other features than the oracle's\n",
                  median(x.abs_ulps), x.worst_ulps->ulps, x.worst_ulps->index, pair_text(s, x.worst_ulps->a, x.worst_ulps->b),
                  x.worst_relative, x.mismatches);
+    if (x.worst_ulps && c.time_bound_ulps)
+      fmt::print("  time bound: {} ulps ({}'s promise): {}\n", *c.time_bound_ulps, c.solver,
+                 past_time_bound(c) == 0 ? "ok" : fmt::format("EXCEEDED by {} events", past_time_bound(c)));
     print_conservation(x);
     if (x.worst_overlap) {
       const EventRecord& w = *x.worst_overlap;
@@ -255,6 +269,8 @@ void print_summary(const SceneCheck& c, const Scene& s) {
     fmt::print("  events: {} contact events, not judged (the expect block says \"oracle\": false)\n", c.contact_events);
   }
   print_totals(c);
+  if (!c.tunnels.empty())
+    fmt::print("  tunnelling: {} {} passed through a fixed body\n", c.tunnels.size(), c.tunnels.size() == 1 ? "body" : "bodies");
   print_expectations(c.expect);
   std::size_t shown = 0;
   for (const EventRecord& r : c.events)
@@ -285,6 +301,8 @@ nlohmann::json summary_json(const SceneCheck& c, const Scene& s) {
   j["median_abs_ulps"] = median(x.abs_ulps);
   j["largest_ulps"] = x.worst_ulps ? x.worst_ulps->ulps : 0;
   j["largest_relative_time_error"] = x.worst_relative;
+  j["time_bound_ulps"] = c.time_bound_ulps ? nlohmann::json(*c.time_bound_ulps) : nlohmann::json(nullptr);
+  j["past_time_bound"] = past_time_bound(c);
   j["feature_mismatches"] = x.mismatches;
   j["largest_energy_change"] = x.worst_energy ? x.worst_energy->energy_change : 0.0;
   j["largest_momentum_change"] = x.worst_momentum ? x.worst_momentum->momentum_change : 0.0;
@@ -296,6 +314,9 @@ nlohmann::json summary_json(const SceneCheck& c, const Scene& s) {
   j["momentum_start"] = {c.momentum_start.x, c.momentum_start.y};
   j["momentum_end"] = {c.momentum_end.x, c.momentum_end.y};
   j["largest_contact_overlap_relative"] = c.largest_contact_overlap;
+  j["tunnels"] = nlohmann::json::array();
+  for (const Tunnel& t : c.tunnels)
+    j["tunnels"].push_back({{"body", id_of(s, t.body)}, {"fixed", id_of(s, t.fixed)}, {"from", t.from}, {"to", t.to}});
   nlohmann::json& e = j["expectations"];
   e["enforcement"] = enforcement_name(c.expect.enforcement);
   if (!c.expect.why.empty()) e["why"] = c.expect.why;

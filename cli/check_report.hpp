@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -43,6 +44,9 @@ EventRecord make_record(std::uint64_t index, double time, const oracle::ExactEve
 
 struct SceneCheck {
   std::string path, name, scalar, solver, stop;
+  // The solver's promised bound on an event's time error in ulps (promised_time_error_ulps);
+  // nothing for fast, which promises none.
+  std::optional<long long> time_bound_ulps;
   StopReason stop_reason = StopReason::ReachedUntil;
   BodyIndex storm_a = kNoBody, storm_b = kNoBody;  // an event storm's two bodies
   std::size_t bodies = 0;
@@ -58,6 +62,8 @@ struct SceneCheck {
   // The engine's largest overlap at a contact as a fraction of the contact distance
   // (World::largest_contact_overlap: the contact deepest in rounding units).
   double largest_contact_overlap = 0;
+  // The bodies that passed through a fixed body (World::tunnels(), pge/tunnel.hpp).
+  std::vector<Tunnel> tunnels;
   ExpectOutcome expect;
   bool end_checked = false;  // the run reached its horizon and the oracle looked for leftovers
   oracle::EndJudgement end;
@@ -76,8 +82,12 @@ double energy_relative_change(const SceneCheck& c);
 // |P_end - P_start| / |P_start|, with the same conventions.
 double momentum_relative_drift(const SceneCheck& c);
 
+// The judged events whose time is further from the exact time than the solver promises (0
+// when it promises nothing).
+std::uint64_t past_time_bound(const SceneCheck& c);
+
 // Why the run fails (for a contrast run: would fail), as short reasons ("collisions[0]",
-// "stop (event-storm)", "2 miss"); empty when it passes.
+// "stop (event-storm)", "2 miss", "1 tunnelled"); empty when it passes.
 std::vector<std::string> failure_reasons(const SceneCheck& c);
 
 void print_summary(const SceneCheck& c, const Scene& scene);

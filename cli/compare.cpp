@@ -84,7 +84,8 @@ int compare_command(const CompareOptions& opt) {
     for (const peers::Outcome& o : rows) fmt::print("{}\n", row(o));
     fmt::print("\nEnergy drift (E_end - E_start)/|E_start|; momentum drift |P_end - P_start|/|P_start|; penetration: the "
                "largest overlap at a step end (PGE: at a contact) / the smaller body's size; tunnelled: moving bodies "
-               "that crossed a fixed body; final-state error: RMS position error / the scene's extent.\n");
+               "that passed through a fixed body (along PGE's arcs, along each peer step) or ended inside one or "
+               "outside the fixed bodies' box; final-state error: RMS position error / the scene's extent.\n");
   }
   if (!opt.json.empty()) {
     nlohmann::json all = nlohmann::json::array();

@@ -79,7 +79,8 @@ int main(int argc, char** argv) {
 
   RunOptions run;
   std::string scalar = "double";
-  CLI::App* run_cmd = app.add_subcommand("run", "Simulate scenes: print a summary per scene and write event traces.");
+  CLI::App* run_cmd = app.add_subcommand("run", "Simulate scenes: print a summary per scene and write event traces; exit 11 when a body passed through a fixed "
+      "body (tunnelling).");
   run_cmd->add_option("scenes", run.scenes, "Scene files (pge-scene/1 JSON) or directories of them")->required();
   run_cmd->add_option("--until", run.until, "Simulated seconds (default: each scene's run.until)")->check(kPositive);
   run_cmd->add_option("--max-events", run.max_events, "Stop after this many collisions (default: the scene's run.max_events)")
@@ -107,7 +108,8 @@ int main(int argc, char** argv) {
   CLI::App* check_cmd = app.add_subcommand(
       "check",
       "Run the engine on scenes, judge every event against the exact oracle and hold each run to its scene's expect "
-      "block; exit 7 on a miss, a phantom or a failed expectation.");
+      "block; exit 7 on a miss, a phantom, a body through a fixed body, an event time past the solver's promise "
+      "(robust, certified: 0 ulps) or a failed expectation.");
   check_cmd->footer(std::string(
       "Expectations (the scene's \"expect\" block, fixtures/README.md): enforced when the run's solver is among\n"
       "  the block's \"solvers\" (default robust, certified) and the run is the scene's own (no --until or\n"
@@ -251,7 +253,7 @@ int main(int argc, char** argv) {
   gate_cmd->footer(std::string(
       "Without --results the gate measures now, with the baseline's sweep (quick or full) and seed, into\n"
       "  OUT/report (without a readable baseline, with --update: the quick sweep, or --full).\n"
-      "  Checks per scene x configuration: misses, phantoms and misorders may not grow; largest\n"
+      "  Checks per scene x configuration: misses, phantoms, misorders and tunnelled bodies may not grow; largest\n"
       "  and p99 |time error| in ulps, energy and momentum drift may grow to --error-factor x the baseline\n"
       "  (with floors: 4 ulps, 64 epsilon of the scalar); the run must stop as before. Speed per\n"
       "  configuration: the geometric mean over its scenes of its wall time relative to the reference\n"

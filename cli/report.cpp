@@ -278,6 +278,7 @@ void measure_accuracy(Row& row, const SceneItem& item, const Settings& s) {
   row.misses = verdicts[static_cast<std::size_t>(oracle::Verdict::Miss)];
   row.phantoms = verdicts[static_cast<std::size_t>(oracle::Verdict::Phantom)];
   row.misorders = verdicts[static_cast<std::size_t>(oracle::Verdict::Misorder)];
+  row.tunnelled = c.tunnels.size();
   std::vector<double> ulps, rel;
   row.rel_hist.assign(report::kRelBuckets, 0);
   for (const EventRecord& e : c.events) {

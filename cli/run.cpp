@@ -7,6 +7,7 @@
 #include "pge/constants.hpp"
 #include "pge/scene_io.hpp"
 #include "pge/step_loop.hpp"
+#include "pge/tunnel.hpp"
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
@@ -46,6 +47,9 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   wo.frames_per_second = opt.frames;
   wo.solver = opt.solver;
   wo.broad_phase = opt.broad_phase;
+  // Every path a body takes, from one motion change to the next, is tested against the fixed
+  // bodies (pge/tunnel.hpp): a few box tests per motion change.
+  wo.watch_tunnels = true;
   World<T> world(scene, wo);
 
   if (trace) {
@@ -69,6 +73,7 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   const double wall = stepped.wall_seconds;
   if (opt.progress) fmt::print(stderr, "\r{:80}\r", "");
   const WorldTotals<double> start = in_double(stepped.start), end = in_double(stepped.end);
+  const std::vector<Tunnel>& tunnels = world.tunnels();
   const EventCounts& n = world.counts();
   const auto contact_overlap = world.largest_contact_overlap();
   const bool full_scan = world.body_count() <= kFullOverlapScanMaxBodies;
@@ -112,6 +117,12 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   j["wall_seconds"] = wall;
   j["events_per_second"] = wall > 0 ? static_cast<double>(n.collisions) / wall : 0.0;
 
+  j["tunnels"] = nlohmann::json::array();
+  for (const Tunnel& t : tunnels)
+    j["tunnels"].push_back({{"body", body_name(scene, t.body)}, {"fixed", body_name(scene, t.fixed)},
+                            {"from", t.from}, {"to", t.to}});
+  if (!tunnels.empty()) result.exit_code = kExitTunnel;
+
   if (world.stop_reason() == StopReason::EventStorm) {
     const auto& s = world.storm();
     j["storm"] = {{"time", to_double(s.time)}, {"a", body_name(scene, s.a)}, {"b", body_name(scene, s.b)},
@@ -143,6 +154,9 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
       fmt::print("; end-of-run scan skipped above {} bodies", kFullOverlapScanMaxBodies);
     const double worst_ulps = std::max(to_double(contact_overlap.ulps), to_double(final_overlap.ulps));
     fmt::print("; bound {:g} ulps: {}\n", kOverlapBoundUlps, worst_ulps <= kOverlapBoundUlps ? "ok" : "EXCEEDED");
+    fmt::print("  tunnelling: {}\n", tunnels.empty() ? "none (no body passed through a fixed body)"
+                                                    : fmt::format("{} {} passed through a fixed body (exit 11)",
+                                                                  tunnels.size(), tunnels.size() == 1 ? "body" : "bodies"));
     fmt::print("  state hash: {:#018x}\n", hash);
     fmt::print("  speed: {} collisions in {:.3f} s: {:.0f} events/s ({} predictions, {} stale queue entries)\n",
                n.collisions, wall, wall > 0 ? static_cast<double>(n.collisions) / wall : 0.0, n.predictions, n.stale);
@@ -156,6 +170,8 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
                loaded.path, to_double(s.time), body_name(scene, s.a), body_name(scene, s.b), s.collisions,
                1e-9 * std::max(1.0, std::abs(to_double(s.time))));
   }
+  for (const Tunnel& t : tunnels)
+    fmt::print(stderr, "pge run: {}: {}\n", loaded.path, tunnel_text(t, body_name(scene, t.body), body_name(scene, t.fixed)));
   return result;
 }
 
@@ -229,7 +245,16 @@ int run_command(const RunOptions& opt) {
       }
     }
     fail(simulate_scene("run", file, [&] {
-      SceneResult r = simulate_any(*loaded, opt, trace.get(), label);
+      SceneResult r;
+      try {
+        r = simulate_any(*loaded, opt, trace.get(), label);
+      } catch (const TunnelError& e) {
+        // PGE_VALIDATE builds stop robust and certified at the first pass-through.
+        if (opt.progress) fmt::print(stderr, "\r{:80}\r", "");
+        fmt::print(stderr, "pge run: {}: {}\n", file, e.what());
+        fail(kExitTunnel);
+        return;
+      }
       if (trace && !trace->close()) {
         fmt::print(stderr, "pge run: error writing trace {}: {}\n", trace_path, trace->error());
         fail(kExitOutput);

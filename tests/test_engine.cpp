@@ -3,6 +3,8 @@
 #include "pge/constants.hpp"
 #include "pge/world.hpp"
 
+#include "scene_bodies.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,32 +15,9 @@
 namespace pge {
 namespace {
 
-BodyDesc circle(std::string id, double r, Vec2d p, Vec2d v, double mass = 1) {
-  BodyDesc b;
-  b.id = std::move(id);
-  b.shape = ShapeKind::Circle;
-  b.radius = r;
-  b.position = p;
-  b.velocity = v;
-  b.mass = mass;
-  return b;
-}
-
-BodyDesc fixed_circle(std::string id, double r, Vec2d p) {
-  BodyDesc b = circle(std::move(id), r, p, {});
-  b.fixed = true;
-  return b;
-}
-
-BodyDesc wall(std::string id, Vec2d a, Vec2d b) {
-  BodyDesc w;
-  w.id = std::move(id);
-  w.shape = ShapeKind::Segment;
-  w.a = a;
-  w.b = b;
-  w.fixed = true;
-  return w;
-}
+using test_scene::circle;
+using test_scene::fixed_circle;
+using test_scene::wall;
 
 Scene make_scene(std::vector<BodyDesc> bodies, double until, Vec2d gravity = {}) {
   Scene s;

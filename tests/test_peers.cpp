@@ -67,17 +67,11 @@ TEST(PeersMeasures, OverlapDepthAgainstSegmentAndPolygon) {
   EXPECT_EQ(peers::overlap_depth(square(1), {0, 0}, square(1), {2.5, 0}), 0.0);
 }
 
-TEST(PeersMeasures, SizesAndTunnelling) {
+// Tunnelling is tested once, for PGE and the peers alike, in tests/test_tunnel.cpp.
+TEST(PeersMeasures, Sizes) {
   EXPECT_EQ(peers::body_size(circle(0.25)), 0.25);
   EXPECT_EQ(peers::body_size(square(1)), 1.0);  // inradius of a square of side 2
   EXPECT_TRUE(std::isinf(peers::body_size(segment({0, 0}, {1, 0}))));
-  BodyDesc wall = square(1);
-  wall.fixed = true;
-  wall.position = {5, 0};
-  EXPECT_TRUE(peers::crosses_fixed(wall, {0, 0}, {10, 0}));    // straight through
-  EXPECT_FALSE(peers::crosses_fixed(wall, {0, 0}, {3.9, 0}));  // stops short
-  EXPECT_TRUE(peers::crosses_fixed(segment({1, -1}, {1, 1}), {0, 0}, {2, 0}));
-  EXPECT_FALSE(peers::crosses_fixed(segment({1, -1}, {1, 1}), {0, 2}, {2, 2}));
 }
 
 TEST(PeersMeasures, RmsErrorAndExtent) {

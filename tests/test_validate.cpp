@@ -4,6 +4,8 @@
 #include "pge/validate.hpp"
 #include "pge/world.hpp"
 
+#include "scene_bodies.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -32,15 +34,7 @@ Scene lattice(std::size_t side) {
   return s;
 }
 
-BodyDesc wall(const std::string& id, Vec2d a, Vec2d b) {
-  BodyDesc w;
-  w.id = id;
-  w.shape = ShapeKind::Segment;
-  w.a = a;
-  w.b = b;
-  w.fixed = true;
-  return w;
-}
+using test_scene::wall;
 
 // The box around the lattice: 1 from the outermost centres, 0.6 more than a radius.
 void add_box(Scene& s, std::size_t side) {

@@ -16,6 +16,7 @@
 #include "contact.hpp"
 #include "event_heap.hpp"
 #include "refine.hpp"
+#include "tunnel_watch.hpp"
 
 #include <boost/math/special_functions/next.hpp>
 
@@ -1199,6 +1200,35 @@ template <class T> struct World<T>::Impl {
   }
 #endif
 
+  // Every moving body's path, from one motion change to the next, tested against the fixed
+  // bodies just before it changes and at the end of the run (WorldOptions::watch_tunnels; always
+  // in PGE_VALIDATE builds, which stop a solver that promises every collision at the first
+  // pass-through).
+#ifdef PGE_VALIDATE
+  static constexpr bool kValidating = true;
+#else
+  static constexpr bool kValidating = false;
+#endif
+  std::optional<TunnelWatch<T>> tunnel_watch;
+  bool tunnels_finished = false;
+  // Body i's motion is about to change at `now` (or the run ends). Its path since t0 is tested
+  // (rebase() moves t0 only when the motion changes); a moving segment has no interior point.
+  void watch_path(BodyIndex i) {
+    if (!tunnel_watch) return;
+    const Body& b = bodies[i];
+    if (b.fixed || b.shape.kind == ShapeKind::Segment) return;
+    const Vec2d offset = b.shape.kind == ShapeKind::Polygon ? vertex_centroid(b.shape.local) : Vec2d{};
+    if (!tunnel_watch->leave(i, offset, b.t0, b.p0, b.v0, b.acc, now)) return;
+    if (!kValidating || !promises_every_collision(solver)) return;
+    const Tunnel& t = tunnel_watch->tunnels().back();
+    throw TunnelError(t, "PGE_VALIDATE: " + tunnel_text(t, bodies[t.body].id, bodies[t.fixed].id));
+  }
+  void watch_end() {
+    if (!tunnel_watch || tunnels_finished) return;
+    tunnels_finished = true;
+    for (BodyIndex i : moving) watch_path(i);
+  }
+
   T frame_time(std::uint64_t k) const { return T(static_cast<double>(k)) / T(fps); }
 };
 
@@ -1266,6 +1296,7 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
 #ifdef PGE_VALIDATE
   if (w.bodies.size() <= Impl::kValidateScanMaxBodies) w.start_overlap_depth = largest_overlap().depth;
 #endif
+  if (options.watch_tunnels || Impl::kValidating) w.tunnel_watch.emplace(scene);
 }
 
 template <class T> World<T>::~World() = default;
@@ -1344,6 +1375,7 @@ template <class T> bool World<T>::step() {
       const Scheduled<T> s = *contact;
       const BodyIndex owner = w.heap.top_index();
       w.now = std::max(w.now, s.time);
+      w.watch_path(owner);
       w.leave(s, owner);
       if (w.on_motion_change) w.on_motion_change(owner, w.now);
       continue;
@@ -1372,6 +1404,8 @@ template <class T> bool World<T>::step() {
         break;
       }
       w.now = std::max(w.now, s.time);
+      w.watch_path(owner);
+      w.watch_path(s.partner);
       w.collide(s);
 #ifdef PGE_VALIDATE
       w.validate(*this);
@@ -1392,6 +1426,7 @@ template <class T> bool World<T>::step() {
     if (w.on_frame) w.on_frame(*this, w.now);
     return true;
   }
+  w.watch_end();
   return false;
 }
 
@@ -1407,6 +1442,10 @@ template <class T> T World<T>::horizon() const { return impl_->horizon; }
 template <class T> StopReason World<T>::stop_reason() const { return impl_->reason; }
 template <class T> const StormInfo<T>& World<T>::storm() const { return impl_->storm; }
 template <class T> const EventCounts& World<T>::counts() const { return impl_->counts; }
+template <class T> const std::vector<Tunnel>& World<T>::tunnels() const {
+  static const std::vector<Tunnel> kNone;
+  return impl_->tunnel_watch ? impl_->tunnel_watch->tunnels() : kNone;
+}
 template <class T> std::size_t World<T>::body_count() const { return impl_->bodies.size(); }
 template <class T> const std::string& World<T>::body_id(BodyIndex i) const { return impl_->bodies.at(i).id; }
 template <class T> bool World<T>::is_fixed(BodyIndex i) const { return impl_->bodies.at(i).fixed; }
@@ -1461,6 +1500,7 @@ template <class T> void World<T>::set_velocity(BodyIndex i, Vec2<T> velocity) {
   Impl& w = *impl_;
   auto& b = w.bodies.at(i);
   if (b.fixed) throw std::invalid_argument("set_velocity: body \"" + b.id + "\" is fixed");
+  w.watch_path(i);
   w.rebase(b, w.now);
   b.v0 = velocity;
   // A new velocity ends the contact state; a face the body still presses on takes it back at

@@ -3,6 +3,7 @@
 
 #include "peer_sim.hpp"
 #include "pge/step_loop.hpp"
+#include "pge/tunnel.hpp"
 #include "pge/world.hpp"
 
 #include <algorithm>
@@ -129,12 +130,6 @@ double sat_depth(const std::vector<Vec2d>& a, const std::vector<Vec2d>& b) {
   return depth;
 }
 
-bool segments_cross(Vec2d p0, Vec2d p1, Vec2d a, Vec2d b) {
-  const double d1 = cross(p1 - p0, a - p0), d2 = cross(p1 - p0, b - p0);
-  const double d3 = cross(b - a, p0 - a), d4 = cross(b - a, p1 - a);
-  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
-}
-
 struct Box {
   Vec2d lo{kInf, kInf}, hi{-kInf, -kInf};
   void add(Vec2d p) {
@@ -183,6 +178,9 @@ Outcome run_pge_as(const Scene& scene, SolverKind solver, double horizon, const 
   wo.max_events = std::numeric_limits<std::uint64_t>::max();  // to the horizon, as the peers run
   wo.frames_per_second = 0;
   wo.solver = solver;
+  // Tunnelling is measured as for the peers (run_peer): a path of a body's interior point through
+  // a fixed body, here along the engine's own arcs between motion changes.
+  wo.watch_tunnels = true;
   World<T> world(scene, wo);
   const std::size_t n = scene.bodies.size();
   std::vector<Vec2<T>> p(n), v(n);
@@ -199,12 +197,14 @@ Outcome run_pge_as(const Scene& scene, SolverKind solver, double horizon, const 
   o.wall_seconds = stepped.wall_seconds;
   if (stepped.stop == StopReason::EventStorm) o.error = "event storm";
   set_drifts(o, stepped.start, stepped.end);
+  std::vector<char> crossed(n, 0);
+  for (const Tunnel& t : world.tunnels()) crossed[t.body] = 1;
   o.penetration = to_double(world.largest_contact_overlap().relative);
   std::vector<Vec2d> end(n);
   const Box box = fixed_bounds(scene);
   for (std::size_t i = 0; i < n; ++i) {
     end[i] = {to_double(p[i].x), to_double(p[i].y)};
-    if (!scene.bodies[i].fixed && escaped(scene, box, i, end[i])) ++o.tunnelled;
+    if (!scene.bodies[i].fixed && (crossed[i] || escaped(scene, box, i, end[i]))) ++o.tunnelled;
   }
   o.final_error = rms_error(scene, end, reference, scene_extent(scene));
   return o;
@@ -238,8 +238,10 @@ Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std
   const Totals<long double> start = totals<long double>(scene, p, v);
   const auto steps = static_cast<std::uint64_t>(std::max(1.0, std::round(horizon * s.hz)));
   const double dt = horizon / static_cast<double>(steps);
-  std::vector<std::size_t> moving, fixed;
-  for (std::size_t i = 0; i < n; ++i) (scene.bodies[i].fixed ? fixed : moving).push_back(i);
+  std::vector<std::size_t> moving;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!scene.bodies[i].fixed) moving.push_back(i);
+  const FixedBodies fixed(scene);
   std::vector<char> crossed(n, 0);
   std::vector<std::pair<std::size_t, std::size_t>> touching;
   std::vector<Vec2d> prev = p;
@@ -255,12 +257,8 @@ Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std
       if (depth > 0) o.penetration = std::max(o.penetration, depth / std::min(body_size(scene.bodies[a]), body_size(scene.bodies[b])));
     }
     for (std::size_t i : moving) {
-      if (!crossed[i])
-        for (std::size_t f : fixed)
-          if (crosses_fixed(scene.bodies[f], prev[i], p[i])) {
-            crossed[i] = 1;
-            break;
-          }
+      if (!crossed[i] && fixed.passed_through(static_cast<BodyIndex>(i), straight_path(prev[i], p[i])) != kNoBody)
+        crossed[i] = 1;
       prev[i] = p[i];
     }
   }
@@ -407,15 +405,6 @@ double body_size(const BodyDesc& b) {
     }
   }
   return kInf;
-}
-
-bool crosses_fixed(const BodyDesc& f, Vec2d p0, Vec2d p1) {
-  const Placed s = place(f, f.position);
-  if (s.circle) return segment_distance(s.centre, p0, p1) < s.radius;
-  const std::size_t edges = s.v.size() == 2 ? 1 : s.v.size();
-  for (std::size_t k = 0; k < edges; ++k)
-    if (segments_cross(p0, p1, s.v[k], s.v[(k + 1) % s.v.size()])) return true;
-  return false;
 }
 
 double scene_extent(const Scene& scene) {

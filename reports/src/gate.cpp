@@ -175,6 +175,7 @@ GateResult gate(const Results& baseline, const Results& results, const GatePolic
       g.count(r, "misses", b.misses, r.misses);
       g.count(r, "phantoms", b.phantoms, r.phantoms);
       g.count(r, "misorders", b.misorders, r.misorders);
+      g.count(r, "tunnelled", b.tunnelled, r.tunnelled);
       if (b.judged_events > 0 || r.judged_events > 0) {
         g.error(r, "largest time error", b.ulps_max, r.ulps_max, policy.ulps_floor, "ulps");
         g.error(r, "p99 time error", b.ulps_p99, r.ulps_p99, policy.ulps_floor, "ulps");

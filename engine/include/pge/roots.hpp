@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 namespace pge {
@@ -18,6 +19,24 @@ namespace pge {
 enum class SolverKind : std::uint8_t { Fast, Robust, Certified };
 
 std::string_view solver_name(SolverKind kind);                  // "fast", "robust", "certified"
+
+// Whether a solver promises never to miss a collision (docs/solvers.md): robust and certified
+// find every earliest root (the oracle finds no miss on any bundled scene), so a body of theirs
+// that passes through a fixed body is a bug, which PGE_VALIDATE builds stop at (pge/tunnel.hpp).
+// Fast keeps the closed forms, which lose roots: it can tunnel, and that is measured (pge run
+// exit 11, the report's tunnelled count), not an engine failure.
+constexpr bool promises_every_collision(SolverKind kind) { return kind != SolverKind::Fast; }
+
+// The largest error of an event's time, in ulps of the scalar, that a solver promises against the
+// exact contact time of the state the engine holds (README "Root solvers", "Exact event times"):
+// certified rounds every root correctly, and robust and certified both re-derive each event's
+// time from the exact paths before processing it, so their times are the exact times correctly
+// rounded: 0 ulps. Fast keeps the closed forms and promises nothing (nothing: contrast only).
+// `pge check` fails a run whose event time is further off than its solver's promise.
+constexpr std::optional<long long> promised_time_error_ulps(SolverKind kind) {
+  if (kind == SolverKind::Fast) return std::nullopt;
+  return 0;
+}
 bool parse_solver_kind(std::string_view text, SolverKind& out);  // false if unknown
 
 // p(t) = c[0] + c[1] t + ... + c[4] t^4. `degree` is the index of the highest coefficient the

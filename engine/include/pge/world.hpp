@@ -7,6 +7,7 @@
 #include "pge/roots.hpp"
 #include "pge/scalar.hpp"
 #include "pge/scene.hpp"
+#include "pge/tunnel.hpp"
 #include "pge/vec2.hpp"
 
 #include <array>
@@ -43,6 +44,12 @@ struct WorldOptions {
   std::uint64_t max_events = 0;   // collision budget; 0: the scene's run.max_events
   double frames_per_second = -1;  // < 0: the scene's run.frames_per_second; 0: none
   BroadPhase broad_phase = BroadPhase::Auto;
+  // Test every path a moving body takes, from one change of its motion to the next and the last
+  // to the end of the run, against the fixed bodies (pge/tunnel.hpp), listing each body that
+  // passed through one in tunnels(): a few box tests per motion change. Always on in
+  // PGE_VALIDATE builds, where a solver that promises every collision (robust, certified) throws
+  // TunnelError at the first.
+  bool watch_tunnels = false;
 };
 
 struct EventCounts {
@@ -114,6 +121,10 @@ template <class T> class World {
   StopReason stop_reason() const;
   const StormInfo<T>& storm() const;
   const EventCounts& counts() const;
+  // The bodies that passed through a fixed body, each once, in the order found; the paths still
+  // running are tested when the run ends (step() returns false). Empty unless watched
+  // (WorldOptions::watch_tunnels or a PGE_VALIDATE build).
+  const std::vector<Tunnel>& tunnels() const;
 
   std::size_t body_count() const;
   const std::string& body_id(BodyIndex i) const;

@@ -42,7 +42,8 @@ struct Outcome {
   double energy_drift = 0;     // (E_end - E_start) / |E_start| (kinetic + potential), signed
   double momentum_drift = 0;   // |P_end - P_start| / |P_start| (moving bodies; 0/0 -> 0)
   double penetration = 0;      // largest overlap seen at any step end, as a fraction of the smaller body's size
-  int tunnelled = 0;           // moving bodies that crossed a fixed body's edge (see peers.cpp)
+  int tunnelled = 0;           // moving bodies that passed through a fixed body (pge/tunnel.hpp), or ended
+                               // inside one or outside the box of the fixed bodies they started in
   double final_error = 0;      // RMS of final position errors against the reference, / the scene's extent
   std::string reference;       // "pge certified double"
   std::string error;           // non-empty: not run (why)
@@ -83,9 +84,6 @@ double overlap_depth(const BodyDesc& a, Vec2d pa, const BodyDesc& b, Vec2d pb);
 // The size a penetration is measured in: a circle's radius, a polygon's inradius (the smallest
 // distance from its vertex centroid to a side line), a segment's: infinite (it has no thickness).
 double body_size(const BodyDesc& b);
-// Whether the path p0 -> p1 of a moving body's reference point crosses an edge of fixed body `f`
-// (placed at its position): how tunnelling is detected.
-bool crosses_fixed(const BodyDesc& f, Vec2d p0, Vec2d p1);
 // The diagonal of the bounding box of every body's shape at its start position.
 double scene_extent(const Scene& scene);
 // RMS over moving bodies of |p_i - q_i|, divided by `extent`.

@@ -60,7 +60,8 @@ struct Row {
   double momentum_drift = 0;  // |P_end - P_start| / |P_start|
   double overlap = 0;         // the deepest contact overlap, as a fraction of the contact distance
                               // (Peer rows: the largest penetration over the smaller body's size)
-  std::uint64_t tunnelled = 0;  // Peer rows: moving bodies that passed through a fixed body
+  std::uint64_t tunnelled = 0;  // moving bodies that passed through a fixed body (accuracy rows: in
+                                // the judged run, World::tunnels(); peer rows: as pge compare counts)
   double final_error = 0;       // Peer rows: RMS final-position error against PGE certified / extent
 
   // Speed: the timed runs (the engine alone, no oracle, no trace).
