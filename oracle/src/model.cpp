@@ -59,18 +59,18 @@ Frame::Frame(const std::vector<BodyModel<Dyadic>>& exact, const std::vector<Body
     : exact_(exact),
       interval_(interval),
       now_(now),
-      now_interval_(Interval::enclose(now)),
-      exact_paths_(exact.size()),
-      interval_paths_(exact.size()) {}
+      now_interval_(Interval::enclose(now)) {}
 
 const PointPath<Dyadic>& Frame::reference(BodyIndex i, const Dyadic*) {
-  if (!exact_paths_[i]) exact_paths_[i] = reference_path(exact_[i], now_);
-  return *exact_paths_[i];
+  auto it = exact_paths_.find(i);
+  if (it == exact_paths_.end()) it = exact_paths_.emplace(i, reference_path(exact_[i], now_)).first;
+  return it->second;
 }
 
 const PointPath<Interval>& Frame::reference(BodyIndex i, const Interval*) {
-  if (!interval_paths_[i]) interval_paths_[i] = reference_path(interval_[i], now_interval_);
-  return *interval_paths_[i];
+  auto it = interval_paths_.find(i);
+  if (it == interval_paths_.end()) it = interval_paths_.emplace(i, reference_path(interval_[i], now_interval_)).first;
+  return it->second;
 }
 
 }  // namespace pge::oracle::detail

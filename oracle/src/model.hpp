@@ -8,6 +8,7 @@
 
 #include <array>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 namespace pge::oracle::detail {
@@ -96,8 +97,10 @@ class Frame {
   const std::vector<BodyModel<Interval>>& interval_;
   Dyadic now_;
   Interval now_interval_;
-  std::vector<std::optional<PointPath<Dyadic>>> exact_paths_;
-  std::vector<std::optional<PointPath<Interval>>> interval_paths_;
+  // Only the bodies a search looks at (a few, with the spatial filter): a map, not a vector of
+  // every body, so that making a frame costs nothing per body.
+  std::unordered_map<BodyIndex, PointPath<Dyadic>> exact_paths_;
+  std::unordered_map<BodyIndex, PointPath<Interval>> interval_paths_;
 };
 
 template <> inline const BodyModel<Dyadic>& Frame::body<Dyadic>(BodyIndex i) const { return exact_[i]; }

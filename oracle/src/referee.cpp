@@ -49,6 +49,8 @@ struct Referee::Impl {
   std::vector<BodyModel<Dyadic>> exact;
   std::vector<BodyModel<Interval>> interval;
   FeatureCache features;
+  std::optional<SpatialFilter> spatial;  // with options.filter and options.spatial
+  std::uint64_t total_pairs = 0;
 
   Frame frame() const { return Frame(exact, interval, state.now); }
 
@@ -63,7 +65,8 @@ struct Referee::Impl {
   NextEvent search(Frame& fr, const Dyadic& tau_hi, BodyPair skip, std::vector<Found> found) {
     SearchCounters n;
     const Interval window(0.0, Interval::enclose(tau_hi).hi());
-    const std::vector<BodyPair> pairs = candidate_pairs(fr, features, window, options.filter, skip, n);
+    const std::vector<BodyPair> pairs =
+        candidate_pairs(fr, features, tau_hi, options.filter, spatial ? &*spatial : nullptr, total_pairs, skip, n);
     n.pairs_exact += pairs.size();
     for (const BodyPair& p : pairs)
       if (auto r = pair_contact(fr, features, p.first, p.second, tau_hi, window, options.filter, n))
@@ -98,14 +101,18 @@ struct Referee::Impl {
   }
 
   void advance(const ExactEvent& e, const ExactMotion& a_after, const ExactMotion& b_after) {
-    const std::pair<BodyIndex, const ExactMotion*> updates[2] = {{e.a, &a_after}, {e.b, &b_after}};
-    for (const auto& [i, m] : updates) {
-      if (state.bodies[i].fixed) continue;
-      state.bodies[i].motion = *m;
-      set_motion(exact[i], *m);
-      set_motion(interval[i], *m);
-    }
     state.now = std::max(state.now, e.time);
+    const std::pair<BodyIndex, const ExactMotion*> updates[2] = {{e.a, &a_after}, {e.b, &b_after}};
+    for (const auto& [i, m] : updates) set_body_motion(i, *m);
+  }
+
+  // Body i continues on `motion` from the state's time on.
+  void set_body_motion(BodyIndex i, const ExactMotion& motion) {
+    if (state.bodies[i].fixed) return;
+    state.bodies[i].motion = motion;
+    set_motion(exact[i], motion);
+    set_motion(interval[i], motion);
+    if (spatial) spatial->moved(i, state.now);
   }
 };
 
@@ -116,6 +123,8 @@ Referee::Referee(ExactState state, RefereeOptions options) : impl_(std::make_uni
     impl_->exact.push_back(exact_model(b));
     impl_->interval.push_back(interval_model(b));
   }
+  impl_->total_pairs = pair_count(impl_->frame());
+  if (options.filter && options.spatial) impl_->spatial.emplace(impl_->interval, impl_->state.now);
 }
 
 Referee::~Referee() = default;
@@ -173,13 +182,8 @@ EndJudgement Referee::take_motion(BodyIndex i, const ExactMotion& motion, const 
     out.miss = out.next.time && out.next.time->compare(time) < 0;
     if (out.miss) ++m.stats.misses_between_events;
   }
-  ExactBody& b = m.state.bodies[i];
-  if (!b.fixed) {
-    b.motion = motion;
-    set_motion(m.exact[i], motion);
-    set_motion(m.interval[i], motion);
-  }
   m.state.now = std::max(m.state.now, time);
+  m.set_body_motion(i, motion);
   m.stats.seconds += std::chrono::duration<double>(Clock::now() - start).count();
   return out;
 }

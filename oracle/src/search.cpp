@@ -4,65 +4,14 @@
 #include "overlap_rule.hpp"
 
 #include <algorithm>
-#include <numeric>
 
 namespace pge::oracle::detail {
 namespace {
-
-struct Box {
-  Interval x, y;
-};
-
-Interval extent(const std::vector<V2<Interval>>& points, bool along_x) {
-  Interval r = along_x ? points.front().x : points.front().y;
-  for (const V2<Interval>& p : points) r = hull(r, along_x ? p.x : p.y);
-  return r;
-}
-
-// Where body i can be during tau in the window: its reference point's swept range plus its
-// shape's extent (fixed polygons and segments: their world vertices).
-Box swept_box(Frame& fr, BodyIndex i, const Interval& tau) {
-  const BodyModel<Interval>& b = fr.body<Interval>(i);
-  if (b.fixed && b.shape != ShapeKind::Circle) return {extent(b.world, true), extent(b.world, false)};
-  const PointPath<Interval>& ref = reference_of<Interval>(fr, i);
-  const Interval x = evaluate(ref.x, tau), y = evaluate(ref.y, tau);
-  if (b.shape == ShapeKind::Circle) {
-    const Interval r(-b.radius.hi(), b.radius.hi());
-    return {x + r, y + r};
-  }
-  return {x + extent(b.local, true), y + extent(b.local, false)};
-}
-
-// Pairs of bodies whose boxes meet (closed), by a sweep along x.
-std::vector<BodyPair> box_pairs(Frame& fr, const std::vector<Box>& boxes) {
-  std::vector<BodyIndex> order(boxes.size());
-  std::iota(order.begin(), order.end(), BodyIndex{0});
-  std::sort(order.begin(), order.end(), [&](BodyIndex p, BodyIndex q) {
-    return boxes[p].x.lo() < boxes[q].x.lo() || (boxes[p].x.lo() == boxes[q].x.lo() && p < q);
-  });
-  std::vector<BodyPair> out;
-  std::vector<BodyIndex> active;
-  for (BodyIndex i : order) {
-    std::erase_if(active, [&](BodyIndex j) { return boxes[j].x.hi() < boxes[i].x.lo(); });
-    for (BodyIndex j : active) {
-      if (fr.exact_body(i).fixed && fr.exact_body(j).fixed) continue;
-      if (overlaps(boxes[i].y, boxes[j].y)) out.push_back({std::min(i, j), std::max(i, j)});
-    }
-    active.push_back(i);
-  }
-  return out;
-}
 
 bool any_feature_may_touch(Frame& fr, FeatureCache& features, BodyPair p, const Interval& tau) {
   for (const Feature& ft : features.of(fr, p.first, p.second))
     if (may_touch(contact_polys<Interval>(ft, fr), tau)) return true;
   return false;
-}
-
-std::uint64_t pair_count(const Frame& fr) {
-  std::uint64_t moving = 0, fixed = 0;
-  for (BodyIndex i = 0; i < fr.size(); ++i) (fr.exact_body(i).fixed ? fixed : moving) += 1;
-  return moving * (moving - (moving > 0 ? 1 : 0)) / 2 + moving * fixed;
 }
 
 }  // namespace
@@ -126,29 +75,32 @@ static bool resting_pair(const Frame& fr, BodyIndex i, BodyIndex j) {
          flush_with_support(fr, j, i);
 }
 
-std::vector<BodyPair> candidate_pairs(Frame& fr, FeatureCache& features, const Interval& window, bool filter,
-                                      BodyPair skip, SearchCounters& n) {
-  const std::uint64_t total = pair_count(fr);
+std::uint64_t pair_count(const Frame& fr) {
+  std::uint64_t moving = 0, fixed = 0;
+  for (BodyIndex i = 0; i < fr.size(); ++i) (fr.exact_body(i).fixed ? fixed : moving) += 1;
+  return moving * (moving - (moving > 0 ? 1 : 0)) / 2 + moving * fixed;
+}
+
+std::vector<BodyPair> candidate_pairs(Frame& fr, FeatureCache& features, const Dyadic& tau_hi, bool filter,
+                                      SpatialFilter* spatial, std::uint64_t total, BodyPair skip, SearchCounters& n) {
   const bool skip_is_pair = skip.first < skip.second && skip.second < fr.size() &&
                             !(fr.exact_body(skip.first).fixed && fr.exact_body(skip.second).fixed);
   const std::uint64_t examined = total - (skip_is_pair ? 1 : 0);
   n.pairs_examined += examined;
-  std::vector<BodyPair> out;
-  if (!filter) {
+  std::vector<BodyPair> pairs;
+  if (spatial && filter) {
+    pairs = spatial->pairs_within(fr.now(), tau_hi);
+  } else {
     for (BodyIndex i = 0; i < fr.size(); ++i)
       for (BodyIndex j = i + 1; j < fr.size(); ++j)
-        if (!(fr.exact_body(i).fixed && fr.exact_body(j).fixed) && BodyPair{i, j} != skip && !resting_pair(fr, i, j))
-          out.push_back({i, j});
-    return out;
+        if (!(fr.exact_body(i).fixed && fr.exact_body(j).fixed)) pairs.push_back({i, j});
   }
-  const Interval tau(0.0, window.hi());
-  std::vector<Box> boxes;
-  boxes.reserve(fr.size());
-  for (BodyIndex i = 0; i < fr.size(); ++i) boxes.push_back(swept_box(fr, i, tau));
-  for (const BodyPair& p : box_pairs(fr, boxes))
-    if (p != skip && !resting_pair(fr, p.first, p.second) && any_feature_may_touch(fr, features, p, tau)) out.push_back(p);
-  std::sort(out.begin(), out.end());
-  n.pairs_filtered += examined - out.size();
+  const Interval tau(0.0, Interval::enclose(tau_hi).hi());
+  std::vector<BodyPair> out;
+  for (const BodyPair& p : pairs)
+    if (p != skip && !resting_pair(fr, p.first, p.second) && (!filter || any_feature_may_touch(fr, features, p, tau)))
+      out.push_back(p);
+  if (filter) n.pairs_filtered += examined - out.size();
   return out;
 }
 

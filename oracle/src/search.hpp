@@ -3,6 +3,7 @@
 #pragma once
 
 #include "contact.hpp"
+#include "spatial_filter.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -30,12 +31,15 @@ struct PairResult {
 std::optional<PairResult> pair_contact(Frame& frame, FeatureCache& features, BodyIndex a, BodyIndex b,
                                        const Dyadic& tau_hi, const Interval& window, bool filter, SearchCounters& n);
 
-using BodyPair = std::pair<BodyIndex, BodyIndex>;
+// The number of body pairs that are not both fixed.
+std::uint64_t pair_count(const Frame& frame);
 
-// Every pair (a < b, not both fixed, not `skip`) that may touch in tau in [0, window.hi()],
-// ascending. With `filter`: pairs whose swept bounding boxes are disjoint, or all of whose
-// feature pairs fail the interval test, are left out; without it every pair is returned.
-std::vector<BodyPair> candidate_pairs(Frame& frame, FeatureCache& features, const Interval& window, bool filter,
-                                      BodyPair skip, SearchCounters& n);
+// Every pair (a < b, not both fixed, not `skip`, not resting) that may touch in tau in
+// [0, tau_hi], ascending. With `filter`: pairs all of whose feature pairs fail the interval test
+// over the window are left out, and with `spatial` only the pairs the spatial filter cannot vouch
+// for are tested; without `filter` every pair is returned. `total` is pair_count(frame), counted
+// in n.pairs_examined.
+std::vector<BodyPair> candidate_pairs(Frame& frame, FeatureCache& features, const Dyadic& tau_hi, bool filter,
+                                      SpatialFilter* spatial, std::uint64_t total, BodyPair skip, SearchCounters& n);
 
 }  // namespace pge::oracle::detail

@@ -13,10 +13,20 @@ Dyadic representable(const Dyadic& t, const TimeFormat& f) { return round_to_for
 
 long long abs_ll(long long v) { return v < 0 ? -v : v; }
 
+// The exact time rounded to format f (ties to even), tried first in the rounding cell of `guess`
+// (the engine's time, right nearly always): two exact comparisons with the cell's ends, strictly
+// inside, instead of refining the time to the format's precision; round_to decides otherwise.
+Dyadic rounded(const ExactTime& exact, const Dyadic& guess, const TimeFormat& f) {
+  const Dyadic below = format_step(guess, -1, f), above = format_step(guess, 1, f);
+  if (exact.compare((below + guess).scaled(-1)) > 0 && exact.compare((guess + above).scaled(-1)) < 0) return guess;
+  return exact.round_to(f);
+}
+
 }  // namespace
 
 long long ulps_from(const Dyadic& engine, const ExactTime& exact, const TimeFormat& f) {
-  const mpz_class d = format_ordinal(representable(engine, f), f) - format_ordinal(exact.round_to(f), f);
+  const Dyadic e = representable(engine, f);
+  const mpz_class d = format_ordinal(e, f) - format_ordinal(rounded(exact, e, f), f);
   if (d > kUlpsClamp) return kUlpsClamp;
   if (d < -kUlpsClamp) return -kUlpsClamp;
   return d.get_si();

@@ -92,8 +92,11 @@ struct EndJudgement {
 };
 
 struct RefereeOptions {
-  bool filter = true;  // the certified interval filter; off: every pair is solved exactly
+  bool filter = true;  // the certified filters; off: every pair is solved exactly
   long agree_ulps = kAgreeUlps;
+  // With `filter`: the spatial filter (src/spatial_filter.hpp) picks the pairs that get the
+  // interval test, O(1) per event; off, every pair gets it (O(N) per event; tests compare).
+  bool spatial = true;
 };
 
 struct RefereeStats {

@@ -1,0 +1,277 @@
+#include "spatial_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pge::oracle::detail {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Interval enclose_time(const Dyadic& t) { return Interval::enclose(t); }
+
+// Upper bound of sqrt(x) for x >= 0 (sqrt is correctly rounded).
+double sqrt_up(double x) { return x <= 0 ? 0.0 : next_up(std::sqrt(x)); }
+
+double norm_up(double x, double y) { return sqrt_up((square(Interval(x)) + square(Interval(y))).hi()); }
+
+double mid(const Interval& v) { return 0.5 * v.lo() + 0.5 * v.hi(); }
+
+std::uint64_t pair_key(BodyIndex i, BodyIndex j) {
+  const BodyIndex a = std::min(i, j), b = std::max(i, j);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b);
+}
+
+BodyPair pair_of(std::uint64_t key) {
+  return {static_cast<BodyIndex>(key >> 32), static_cast<BodyIndex>(key & 0xffffffffu)};
+}
+
+// What the filter knows of a body's shape from `now` on: a disc about a point on a quadratic
+// path (moving bodies and fixed circles), or a fixed convex outline.
+struct Hull {
+  bool outline = false;
+  PointPath<Interval> centre;
+  Interval reach;                               // the disc's radius, an upper bound
+  const std::vector<V2<Interval>>* vertices = nullptr;  // the outline's world vertices
+};
+
+// max over the hull of n.x at tau, as a polynomial in tau with interval coefficients.
+Poly<Interval> support(const Hull& h, double nx, double ny) {
+  if (h.outline) {
+    double lo = -kInf, hi = -kInf;
+    for (const V2<Interval>& v : *h.vertices) {
+      const Interval s = v.x * Interval(nx) + v.y * Interval(ny);
+      lo = std::max(lo, s.lo());
+      hi = std::max(hi, s.hi());
+    }
+    return Poly<Interval>::constant(Interval(lo, hi));
+  }
+  Poly<Interval> p = h.centre.x * Interval(nx) + h.centre.y * Interval(ny);
+  p.c[0] = p.c[0] + h.reach * Interval(norm_up(nx, ny));
+  return p;
+}
+
+// How long (tau from now, a lower bound) b stays strictly on the +n side of a: the gap
+// g(tau) = min_b n.x - max_a n.x satisfies g >= G - beta tau - alpha tau^2 (tau >= 0), positive
+// before its first root 2G / (beta + sqrt(beta^2 + 4 alpha G)), rounded towards zero here.
+double separated_for(const Hull& a, const Hull& b, double nx, double ny) {
+  if (nx == 0 && ny == 0) return 0;
+  const Poly<Interval> g = -support(b, -nx, -ny) - support(a, nx, ny);
+  const double G = g.c[0].lo();
+  if (!(G > 0)) return 0;
+  const double beta = std::max(g.deg >= 1 ? -g.c[1].lo() : 0.0, 0.0);
+  const double alpha = std::max(g.deg >= 2 ? -g.c[2].lo() : 0.0, 0.0);
+  if (alpha == 0 && beta == 0) return kInf;
+  const double disc = (square(Interval(beta)) + Interval(4.0) * Interval(alpha) * Interval(G)).hi();
+  const double den = (Interval(beta) + Interval(sqrt_up(disc))).hi();
+  if (!(den > 0) || std::isnan(den)) return 0;
+  const double q = next_down(G / den);  // below G / den: the quotient rounds by half an ulp at most
+  if (!(q > 0)) return 0;
+  return std::min(2 * q, std::numeric_limits<double>::max());  // doubling is exact (or saturates)
+}
+
+}  // namespace
+
+SpatialFilter::SpatialFilter(const std::vector<BodyModel<Interval>>& bodies, const Dyadic& now)
+    : bodies_(bodies), reach_(bodies.size(), 0.0), entries_(bodies.size()) {
+  std::vector<double> moving;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const BodyModel<Interval>& b = bodies[i];
+    double r = b.radius.hi();
+    if (b.shape != ShapeKind::Circle) {
+      r = 0;
+      for (const V2<Interval>& v : b.local)
+        r = std::max(r, sqrt_up((square(v.x) + square(v.y)).hi()));
+    }
+    reach_[i] = r;
+    if (!b.fixed) moving.push_back(r);
+  }
+  if (!moving.empty()) {
+    std::nth_element(moving.begin(), moving.begin() + static_cast<long>(moving.size() / 2), moving.end());
+    cell_ = kFilterCellReaches * moving[moving.size() / 2];
+  }
+  if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
+  const Interval t = enclose_time(now);
+  for (BodyIndex i = 0; i < bodies.size(); ++i) make_entry(i, t, -kInf);
+}
+
+void SpatialFilter::moved(BodyIndex i, const Dyadic& now) {
+  drop_entry(i);
+  make_entry(i, enclose_time(now), -kInf);
+}
+
+std::vector<BodyPair> SpatialFilter::pairs_within(const Dyadic& now, const Dyadic& tau_hi) {
+  const Interval t = enclose_time(now);
+  const double w = (t + enclose_time(tau_hi)).hi();  // the window's end, rounded up
+  // Every box must hold its body up to the window's end.
+  while (!expiry_.empty() && expiry_.top().first < w) {
+    const auto [until, tag] = expiry_.top();
+    expiry_.pop();
+    const auto [version, i] = tag;
+    if (entries_[i].version != version) continue;  // remade since
+    drop_entry(i);
+    make_entry(i, t, w);
+  }
+  // Pairs not vouched for up to w; a bound made before now is remade from now first.
+  std::vector<BodyPair> out;
+  std::vector<std::pair<std::uint64_t, double>> remade;
+  for (auto it = by_time_.begin(); it != by_time_.end() && it->first <= w; ++it) {
+    const BodyPair p = pair_of(it->second);
+    double bound = it->first;
+    if (bounds_[it->second].made < t.lo()) {
+      bound = pair_bound(p.first, p.second, t);
+      remade.push_back({it->second, bound});
+    }
+    if (bound <= w) out.push_back(p);
+  }
+  for (const auto& [key, bound] : remade) {
+    PairBound& b = bounds_[key];
+    by_time_.erase({b.time, key});
+    b = {bound, t.lo()};
+    by_time_.insert({bound, key});
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+double SpatialFilter::box_span(BodyIndex i) const {
+  // Long enough for the body to move about one cell: the box then meets a few cells.
+  const BodyModel<Interval>& b = bodies_[i];
+  const double speed = norm_up(std::max(std::abs(b.v0.x.lo()), std::abs(b.v0.x.hi())),
+                               std::max(std::abs(b.v0.y.lo()), std::abs(b.v0.y.hi())));
+  const double acc = norm_up(std::max(std::abs(b.acc.x.lo()), std::abs(b.acc.x.hi())),
+                             std::max(std::abs(b.acc.y.lo()), std::abs(b.acc.y.hi())));
+  double span = kMaxFilterSpan;
+  if (speed > 0) span = std::min(span, cell_ / speed);
+  if (acc > 0) span = std::min(span, std::sqrt(2 * cell_ / acc));
+  return span;
+}
+
+std::int64_t SpatialFilter::cell_of(double x) const { return static_cast<std::int64_t>(std::floor(x / cell_)); }
+
+void SpatialFilter::make_entry(BodyIndex i, const Interval& now, double until) {
+  const BodyModel<Interval>& b = bodies_[i];
+  Entry& e = entries_[i];
+  e.made = now.lo();
+  ++e.version;
+  Interval x, y;
+  if (b.fixed) {
+    e.until = kInf;
+    if (b.shape == ShapeKind::Circle) {
+      x = b.p0.x + Interval(-reach_[i], reach_[i]);
+      y = b.p0.y + Interval(-reach_[i], reach_[i]);
+    } else {
+      x = b.world.front().x;
+      y = b.world.front().y;
+      for (const V2<Interval>& v : b.world) x = hull(x, v.x), y = hull(y, v.y);
+    }
+  } else {
+    e.until = std::max((now + Interval(box_span(i))).lo(), until);
+    // tau in [0, until - now]: the box holds the shape over [now, until].
+    const Interval tau(0.0, (Interval(e.until) - now).hi());
+    const PointPath<Interval> ref = reference_path(b, now);
+    x = evaluate(ref.x, tau) + Interval(-reach_[i], reach_[i]);
+    y = evaluate(ref.y, tau) + Interval(-reach_[i], reach_[i]);
+    expiry_.push({e.until, {e.version, i}});
+  }
+  e.box = {x.lo(), y.lo(), x.hi(), y.hi()};
+  const double limit = kMaxFilterCellIndex * cell_;
+  const bool bounded = std::abs(e.box.x0) < limit && std::abs(e.box.x1) < limit && std::abs(e.box.y0) < limit &&
+                       std::abs(e.box.y1) < limit;
+  std::vector<BodyIndex> near;
+  e.cells.clear();
+  e.wide = !bounded;
+  if (bounded) {
+    const std::int64_t cx0 = cell_of(e.box.x0), cx1 = cell_of(e.box.x1);
+    const std::int64_t cy0 = cell_of(e.box.y0), cy1 = cell_of(e.box.y1);
+    e.wide = (cx1 - cx0 + 1) * (cy1 - cy0 + 1) > kMaxFilterCells;
+    if (!e.wide)
+      for (std::int64_t cx = cx0; cx <= cx1; ++cx)
+        for (std::int64_t cy = cy0; cy <= cy1; ++cy) {
+          const std::uint64_t key = (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy & 0xffffffff);
+          e.cells.push_back(static_cast<std::int64_t>(key));
+          std::vector<BodyIndex>& in = grid_[key];
+          near.insert(near.end(), in.begin(), in.end());
+          in.push_back(i);
+        }
+  }
+  if (e.wide) {
+    for (BodyIndex j = 0; j < entries_.size(); ++j)
+      if (j != i && entries_[j].version > 0) near.push_back(j);
+    wide_.push_back(i);
+  } else {
+    near.insert(near.end(), wide_.begin(), wide_.end());
+  }
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  for (BodyIndex j : near) {
+    if (j == i || (b.fixed && bodies_[j].fixed)) continue;
+    const Box& o = entries_[j].box;
+    if (e.box.x0 <= o.x1 && o.x0 <= e.box.x1 && e.box.y0 <= o.y1 && o.y0 <= e.box.y1) add_pair(i, j, now);
+  }
+}
+
+void SpatialFilter::drop_entry(BodyIndex i) {
+  Entry& e = entries_[i];
+  for (BodyIndex j : e.partners) {
+    const std::uint64_t key = pair_key(i, j);
+    const auto it = bounds_.find(key);
+    by_time_.erase({it->second.time, key});
+    bounds_.erase(it);
+    std::vector<BodyIndex>& back = entries_[j].partners;
+    back.erase(std::find(back.begin(), back.end(), i));
+  }
+  e.partners.clear();
+  for (std::int64_t c : e.cells) {
+    std::vector<BodyIndex>& in = grid_[static_cast<std::uint64_t>(c)];
+    in.erase(std::find(in.begin(), in.end(), i));
+  }
+  e.cells.clear();
+  if (e.wide) wide_.erase(std::find(wide_.begin(), wide_.end(), i));
+  e.wide = false;
+}
+
+void SpatialFilter::add_pair(BodyIndex i, BodyIndex j, const Interval& now) {
+  const std::uint64_t key = pair_key(i, j);
+  const double bound = pair_bound(i, j, now);
+  bounds_[key] = {bound, now.lo()};
+  by_time_.insert({bound, key});
+  entries_[i].partners.push_back(j);
+  entries_[j].partners.push_back(i);
+}
+
+double SpatialFilter::pair_bound(BodyIndex i, BodyIndex j, const Interval& now) const {
+  const auto hull_of = [&](BodyIndex k) {
+    const BodyModel<Interval>& b = bodies_[k];
+    Hull h;
+    if (b.fixed && b.shape != ShapeKind::Circle) {
+      h.outline = true;
+      h.vertices = &b.world;
+    } else {
+      h.centre = reference_path(b, now);
+      h.reach = Interval(reach_[k]);
+    }
+    return h;
+  };
+  const Hull a = hull_of(i), b = hull_of(j);
+  double tau = 0;
+  if (!a.outline && !b.outline) {
+    // Two discs: the axis through their centres now.
+    tau = separated_for(a, b, mid(b.centre.x.c[0] - a.centre.x.c[0]), mid(b.centre.y.c[0] - a.centre.y.c[0]));
+  } else {
+    // A disc and a fixed outline: the outline's edge normals and the coordinate axes, both ways.
+    const std::vector<V2<Interval>>& v = a.outline ? *a.vertices : *b.vertices;
+    std::vector<std::pair<double, double>> axes = {{1, 0}, {0, 1}};
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const V2<Interval>& p = v[k];
+      const V2<Interval>& q = v[(k + 1) % v.size()];
+      axes.push_back({mid(q.y - p.y), -mid(q.x - p.x)});
+    }
+    for (const auto& [nx, ny] : axes) tau = std::max({tau, separated_for(a, b, nx, ny), separated_for(a, b, -nx, -ny)});
+  }
+  if (!(tau > 0)) return -kInf;  // nothing vouched for beyond now
+  return (now + Interval(tau)).lo();
+}
+
+}  // namespace pge::oracle::detail
