@@ -18,13 +18,13 @@ namespace pge {
 template <class T>
 std::optional<PredictedContact<T>> circle_outline_contact(SolverKind solver, const BodyShape<T>& circle, const Kinematics<T>& kc,
                                                           const BodyShape<T>& other, const Kinematics<T>& ko, const T& horizon,
-                                                          bool other_first) {
+                                                          bool other_first, const GrazeJudge<T>* grazes) {
   const Vec2<T> v = kc.v - ko.v, acc = kc.a - ko.a;
   if (other.kind == ShapeKind::Polygon)
-    return circle_polygon_contact(solver, kc.p, v, acc, circle.radius, other, ko.p, horizon, other_first);
+    return circle_polygon_contact(solver, kc.p, v, acc, circle.radius, other, ko.p, horizon, other_first, grazes);
   // A moving segment: its endpoint a is exactly p + local a (the state an exact referee reads).
   return circle_segment_contact(solver, (kc.p - ko.p) - other.local[0], v, acc, circle.radius, other.edges[0], horizon,
-                                other_first);
+                                other_first, grazes);
 }
 
 // Two circles, from their distance_poly `p`.
@@ -37,21 +37,22 @@ std::optional<PredictedContact<T>> circle_pair_contact(SolverKind solver, const 
 
 template <class T>
 std::optional<PredictedContact<T>> predict_contact(SolverKind solver, const BodyShape<T>& sa, const Kinematics<T>& ka,
-                                                   const BodyShape<T>& sb, const Kinematics<T>& kb, const T& horizon) {
+                                                   const BodyShape<T>& sb, const Kinematics<T>& kb, const T& horizon,
+                                                   const GrazeJudge<T>* grazes = nullptr) {
   const bool a_circle = sa.kind == ShapeKind::Circle, b_circle = sb.kind == ShapeKind::Circle;
   if (a_circle && b_circle)
     return circle_pair_contact(solver, distance_poly(kb.p - ka.p, kb.v - ka.v, kb.a - ka.a, sa.radius + sb.radius), horizon);
   // Circles against fixed walls: the cheapest category, and the one a gas in a box lives on.
   if (sa.kind == ShapeKind::Segment && sa.fixed && b_circle)
     return circle_segment_contact(solver, kb.p - sa.seg_a, kb.v - ka.v, kb.a - ka.a, sb.radius, sa.seg_b - sa.seg_a,
-                                  horizon, true);
+                                  horizon, true, grazes);
   if (a_circle && sb.kind == ShapeKind::Segment && sb.fixed)
     return circle_segment_contact(solver, ka.p - sb.seg_a, ka.v - kb.v, ka.a - kb.a, sa.radius, sb.seg_b - sb.seg_a,
-                                  horizon, false);
+                                  horizon, false, grazes);
   if (!bounding_circles_meet(solver, sa, ka, sb, kb, horizon)) return std::nullopt;
-  if (a_circle) return circle_outline_contact(solver, sa, ka, sb, kb, horizon, false);
-  if (b_circle) return circle_outline_contact(solver, sb, kb, sa, ka, horizon, true);
-  return outline_contact(solver, sa, ka, sb, kb, horizon);
+  if (a_circle) return circle_outline_contact(solver, sa, ka, sb, kb, horizon, false, grazes);
+  if (b_circle) return circle_outline_contact(solver, sb, kb, sa, ka, horizon, true, grazes);
+  return outline_contact(solver, sa, ka, sb, kb, horizon, grazes);
 }
 
 // The contact's geometry at the instant of the kinematics (the contact time).

@@ -16,7 +16,7 @@ namespace pge {
 template <class T>
 std::optional<PredictedContact<T>> circle_segment_contact(SolverKind solver, const Vec2<T>& q, const Vec2<T>& v, const Vec2<T>& acc,
                                                           const T& r, const Vec2<T>& u, const T& horizon,
-                                                          bool segment_first) {
+                                                          bool segment_first, const GrazeJudge<T>* grazes = nullptr) {
   using std::sqrt;
   std::optional<PredictedContact<T>> best;
   auto offer = [&](const T& t, ContactKind kind, std::uint16_t seg_feature, bool overlap) {
@@ -36,13 +36,22 @@ std::optional<PredictedContact<T>> circle_segment_contact(SolverKind solver, con
     p.c[2] = T(side) * dot(acc, m) / T(2);
     p.degree = 2;
     const StartRule rule = side == side_now ? StartRule::OverlapCollides : StartRule::CrossingsOnly;
-    visit_downward_roots(solver, p, T(0), horizon, rule, [&](const T& t, bool overlap) {
+    const auto on_edge = [&](const T& t) {
       const Vec2<T> qt = q + v * t + acc * (t * t / T(2));
       const T along = dot(qt, u);
-      if (along < T(0) || along > uu) return false;  // off the edge: a vertex's business
-      offer(t, ContactKind::CircleEdge, 0, overlap);
-      return true;
-    });
+      return along >= T(0) && along <= uu;  // off the edge: a vertex's business
+    };
+    const std::optional<AcceptedRoot<T>> rounded = first_accepted_root(solver, p, horizon, rule, on_edge);
+    // A near-graze from the side the circle is on: the exact paths decide.
+    T t = T(0);
+    const auto magnitude = [&](const T& at) { return cross_magnitude(q, v, acc, at, u) + r * len; };
+    if (grazes && side == side_now && near_line_graze(p, horizon, magnitude, t)) {
+      if (rounded && !rounded->overlap) t = rounded->t;
+      const GrazeVerdict g = grazes->decide(ContactKind::CircleEdge, 0, 0, t);
+      if (g == GrazeVerdict::Crosses && on_edge(t)) offer(t, ContactKind::CircleEdge, 0, false);
+      if (g != GrazeVerdict::Undecided) continue;
+    }
+    if (rounded) offer(rounded->t, ContactKind::CircleEdge, 0, rounded->overlap);
   }
   for (std::uint16_t k = 0; k < 2; ++k) {
     const Vec2<T> d = k == 0 ? q : q - u;
@@ -59,7 +68,8 @@ std::optional<PredictedContact<T>> circle_segment_contact(SolverKind solver, con
 template <class T>
 std::optional<PredictedContact<T>> circle_polygon_contact(SolverKind solver, const Vec2<T>& c, const Vec2<T>& v,
                                                           const Vec2<T>& acc, const T& r, const BodyShape<T>& poly,
-                                                          const Vec2<T>& poly_p, const T& horizon, bool polygon_first) {
+                                                          const Vec2<T>& poly_p, const T& horizon, bool polygon_first,
+                                                          const GrazeJudge<T>* grazes = nullptr) {
   std::optional<PredictedContact<T>> best;
   auto offer = [&](const T& t, ContactKind kind, std::size_t feature, bool overlap) {
     const std::uint16_t f = feature_index(feature);
@@ -80,12 +90,23 @@ std::optional<PredictedContact<T>> circle_polygon_contact(SolverKind solver, con
     // Behind the edge's line the function measures no separation: only crossings count there.
     const StartRule rule = front > T(0) ? StartRule::OverlapCollides : StartRule::CrossingsOnly;
     const T ee = dot(e, e);
-    visit_downward_roots(solver, p, T(0), horizon, rule, [&](const T& t, bool overlap) {
+    const auto on_edge = [&](const T& t) {
       const T along = dot(q + v * t + acc * (t * t / T(2)), e);
-      if (along < T(0) || along > ee) return false;  // off the edge: a vertex's business
-      offer(t, ContactKind::CircleEdge, j, overlap);
-      return true;
-    });
+      return along >= T(0) && along <= ee;  // off the edge: a vertex's business
+    };
+    const std::optional<AcceptedRoot<T>> rounded = first_accepted_root(solver, p, horizon, rule, on_edge);
+    // A near-graze in front of the edge: the exact paths decide.
+    T t = T(0);
+    const auto magnitude = [&](const T& at) { return cross_magnitude(q, v, acc, at, e) + r * poly.edge_length[j]; };
+    if (grazes && front > T(0) && near_line_graze(p, horizon, magnitude, t)) {
+      if (rounded && !rounded->overlap) t = rounded->t;
+      const std::uint16_t f = feature_index(j);
+      const GrazeVerdict g = grazes->decide(ContactKind::CircleEdge, polygon_first ? f : std::uint16_t(0),
+                                            polygon_first ? std::uint16_t(0) : f, t);
+      if (g == GrazeVerdict::Crosses && on_edge(t)) offer(t, ContactKind::CircleEdge, j, false);
+      if (g != GrazeVerdict::Undecided) continue;
+    }
+    if (rounded) offer(rounded->t, ContactKind::CircleEdge, j, rounded->overlap);
   }
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2<T> d = (c - poly.base(poly_p, k)) - poly.offset(k);

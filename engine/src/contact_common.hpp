@@ -9,6 +9,7 @@
 #include "pge/roots.hpp"
 #include "pge/vec2.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -103,6 +104,66 @@ std::optional<RootOutcome<T>> point_contact(SolverKind solver, const Vec2<T>& d,
 // A line contact function c0 + c1 t + c2 t^2 (a signed distance to a line, scaled) that is
 // non-decreasing for all t >= 0 has no downward root and no overlap-rule root: skipped unsolved.
 template <class T> bool never_decreasing(const Poly<T>& p) { return p.c[1] >= T(0) && p.c[2] >= T(0); }
+
+// A line contact whose rounded function comes within rounding of a double root (a graze, or a
+// near-graze: a ball touching a ceiling at the apex of its bounce) crosses zero or not by the
+// rounding of the state it was built from; robust and certified ask the exact paths instead
+// (world.cpp, through refine.hpp's exact_line_graze). The judge knows the pair; nullptr (fast):
+// the rounded function decides.
+enum class GrazeVerdict : std::uint8_t {
+  Undecided,  // not a case the exact test covers: the rounded function decides
+  Misses,     // the exact function stays positive: no contact of this feature pair there
+  Crosses,    // the exact function crosses downward: at the time written back
+};
+template <class T> struct GrazeJudge {
+  // The feature pair (engine features, in the pair's a/b order) whose rounded function passes
+  // within rounding of a double root; `t` (relative to now) is where to look for its crossing:
+  // the rounded root if there is one, else the rounded minimum. On Crosses, `t` becomes the
+  // crossing's time.
+  virtual GrazeVerdict decide(ContactKind kind, std::uint16_t feature_a, std::uint16_t feature_b, T& t) const = 0;
+
+ protected:
+  ~GrazeJudge() = default;
+};
+
+// Whether the line contact function p (c0 + c1 t + c2 t^2) falls to a minimum in (0, horizon]
+// that is within rounding of zero (kLineGrazeRelative of magnitude(t_min), the size of the terms
+// it is computed from at that time); `t_min` is that minimum's time.
+template <class T, class Magnitude>
+bool near_line_graze(const Poly<T>& p, const T& horizon, const Magnitude& magnitude, T& t_min) {
+  using std::abs;
+  if (!(p.c[2] > T(0)) || !(p.c[1] < T(0))) return false;
+  t_min = -p.c[1] / (T(2) * p.c[2]);
+  return t_min <= horizon && abs(p(t_min)) <= T(kLineGrazeRelative) * magnitude(t_min);
+}
+
+// The size of the terms of cross(q + v t + acc t^2 / 2, e), component by component (what its
+// rounding is relative to; a wall reaching far along x adds nothing to a distance measured in y):
+// the magnitude near_line_graze is given. The rounding of q itself, from positions far from the
+// origin, is not counted: such a pair's near-grazes are left to the rounded function.
+template <class T> T cross_magnitude(const Vec2<T>& q, const Vec2<T>& v, const Vec2<T>& acc, const T& t, const Vec2<T>& e) {
+  using std::abs;
+  const auto part = [&](const T& qi, const T& vi, const T& ai) { return abs(qi) + (abs(vi) + abs(ai) * t) * t; };
+  return part(q.x, v.x, acc.x) * abs(e.y) + part(q.y, v.y, acc.y) * abs(e.x);
+}
+
+// The earliest downward root of p in [0, horizon] that `accept(t)` takes (a contact point on the
+// feature), and whether the overlap rule gave it; nothing if there is none.
+template <class T> struct AcceptedRoot {
+  T t;
+  bool overlap;
+};
+template <class T, class Accept>
+std::optional<AcceptedRoot<T>> first_accepted_root(SolverKind solver, const Poly<T>& p, const T& horizon, StartRule rule,
+                                                   const Accept& accept) {
+  std::optional<AcceptedRoot<T>> out;
+  visit_downward_roots(solver, p, T(0), horizon, rule, [&](const T& t, bool overlap) {
+    if (!accept(t)) return false;
+    out = AcceptedRoot<T>{t, overlap};
+    return true;
+  });
+  return out;
+}
 
 // The largest coordinate magnitude of the pair at positions pa, pb: the scale of its rounding.
 template <class T>

@@ -180,10 +180,14 @@ std::optional<VertexEdgeHit<T>> judge_root(const OutlineView<T>& o, std::size_t 
 
 // The earliest approaching contact of vertex k of P with edge j of Q in [0, horizon]. The
 // contact function is the distance of the vertex in front of the edge's line times |e|, a
-// quadratic; a root counts where judge_root says so.
+// quadratic; a root counts where judge_root says so. A near-graze in front of the edge is
+// decided by `grazes` (if given) as the feature pair (fa, fb) of the contact `kind`.
 template <class T>
 std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const OutlineView<T>& o, std::size_t k,
-                                                    std::size_t j, StartRule rule, const T& scale, const T& horizon) {
+                                                    std::size_t j, StartRule rule, const T& scale, const T& horizon,
+                                                    const GrazeJudge<T>* grazes = nullptr,
+                                                    ContactKind kind = ContactKind::VertexEdge, std::uint16_t fa = 0,
+                                                    std::uint16_t fb = 0) {
   const Vec2<T> d0 = o.offset(k, j);
   const Vec2<T>& e = o.Q.edges[j];
   Poly<T> p;
@@ -193,26 +197,46 @@ std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const Out
   p.degree = 2;
   if (never_decreasing(p)) return std::nullopt;
   std::optional<VertexEdgeHit<T>> hit;
+  std::optional<T> first_root;  // the rounded function's first downward root, judged or not
   visit_downward_roots(solver, p, T(0), horizon, rule, [&](const T& t, bool overlap) {
+    if (!first_root && !overlap) first_root = t;
     hit = judge_root(o, k, j, d0, t, overlap, scale);
     return hit.has_value();
   });
+  T t = T(0);
+  const auto magnitude = [&](const T& at) { return cross_magnitude(d0, o.dv, o.da, at, e); };
+  if (grazes && p.c[0] > T(0) && near_line_graze(p, horizon, magnitude, t)) {
+    if (first_root) t = *first_root;
+    const GrazeVerdict g = grazes->decide(kind, fa, fb, t);
+    if (g == GrazeVerdict::Misses) return std::nullopt;
+    if (g == GrazeVerdict::Crosses) {
+      // Inside the edge a vertex crossing its line from the front enters Q (a segment too: the
+      // bodies do not overlap before, so P lies on that side); at a corner the corner rule
+      // judges the crossing, and if it cannot tell, the rounded roots decide.
+      const Vec2<T> d = d0 + o.dv * t + o.da * (t * t / T(2));
+      if (locate_on_edge(d, o.dv + o.da * t, e, o.Q.edge_length[j], scale) == EdgeSpot::Interior)
+        return VertexEdgeHit<T>{t, false, false};
+      if (auto h = judge_root(o, k, j, d0, t, false, scale)) return h;
+    }
+  }
   return hit;
 }
 
 // Every vertex of P against every edge of Q, offered as `kind` (VertexEdge when P is body a).
 template <class T>
 void scan_vertex_edge(SolverKind solver, const OutlineView<T>& o, ContactKind kind, const std::optional<T>& overlap,
-                      const T& scale, const T& horizon, std::optional<PredictedContact<T>>& best) {
+                      const T& scale, const T& horizon, std::optional<PredictedContact<T>>& best,
+                      const GrazeJudge<T>* grazes) {
   for (std::size_t j = 0; j < o.Q.vertex_count(); ++j) {
     const bool axis_is_least = overlap && o.axis(j) == *overlap;
     for (std::size_t k = 0; k < o.P.vertex_count(); ++k) {
       const bool real = axis_is_least && o.depth(k, j) == *overlap;
       const StartRule rule = real ? StartRule::OverlapCollides : StartRule::CrossingsOnly;
-      const auto hit = vertex_edge_contact(solver, o, k, j, rule, scale, horizon);
-      if (!hit) continue;
       const std::uint16_t vk = feature_index(k), ej = feature_index(j);
       const bool p_is_a = kind == ContactKind::VertexEdge;
+      const auto hit = vertex_edge_contact(solver, o, k, j, rule, scale, horizon, grazes, kind, p_is_a ? vk : ej,
+                                           p_is_a ? ej : vk);
+      if (!hit) continue;
       keep_earliest(best, PredictedContact<T>{hit->t, kind, p_is_a ? vk : ej, p_is_a ? ej : vk, hit->overlap,
                                               hit->corner});
     }
@@ -222,14 +246,15 @@ void scan_vertex_edge(SolverKind solver, const OutlineView<T>& o, ContactKind ki
 // The earliest approaching contact of two polygons / segments.
 template <class T>
 std::optional<PredictedContact<T>> outline_contact(SolverKind solver, const BodyShape<T>& sa, const Kinematics<T>& ka,
-                                                   const BodyShape<T>& sb, const Kinematics<T>& kb, const T& horizon) {
+                                                   const BodyShape<T>& sb, const Kinematics<T>& kb, const T& horizon,
+                                                   const GrazeJudge<T>* grazes = nullptr) {
   const OutlineView<T> ab = view_of(sa, ka, sb, kb);  // a's vertices against b's edges
   const OutlineView<T> ba = view_of(sb, kb, sa, ka);
   const std::optional<T> overlap = least_penetration(ab, ba);
   const T scale = pair_scale(sa, ka.p, sb, kb.p);
   std::optional<PredictedContact<T>> best;
-  scan_vertex_edge(solver, ab, ContactKind::VertexEdge, overlap, scale, horizon, best);
-  scan_vertex_edge(solver, ba, ContactKind::EdgeVertex, overlap, scale, horizon, best);
+  scan_vertex_edge(solver, ab, ContactKind::VertexEdge, overlap, scale, horizon, best, grazes);
+  scan_vertex_edge(solver, ba, ContactKind::EdgeVertex, overlap, scale, horizon, best, grazes);
   return best;
 }
 

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "body_shape.hpp"
+#include "contact_common.hpp"
 #include "event_heap.hpp"
 
 #include "pge/roots.hpp"
@@ -437,6 +438,68 @@ bool near_graze(const Poly<T>& p, const Vec2<T>& d, const Vec2<T>& dv, const Vec
     return found;
   });
   return found;
+}
+
+// --- Near-grazes of line contacts, decided exactly (robust and certified).
+// A circle or a vertex against an edge meets it where a distance to the edge's line, quadratic
+// in time for translating bodies, reaches the radius (or zero). At a double root (a ball touching
+// a ceiling at the apex of its bounce) the rounded quadratic crosses or not by its rounding:
+// contact_common.hpp's near_line_graze finds such a minimum, and the exact paths decide it here.
+
+// The line function of the scheduled line contact at time t: cross(centre - edge start, e) for
+// a circle against edge e, cross(vertex - edge start, e) for a vertex against it (positive in
+// front of a polygon's edge).
+template <class T> Exact line_value(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T>& s, const Exact& t) {
+  const ExactView<T> va(a, t), vb(b, t);
+  if (s.contact == ContactKind::CircleEdge) {
+    const bool a_circle = va.kind() == ShapeKind::Circle;
+    const ExactView<T>& c = a_circle ? va : vb;
+    const ExactView<T>& o = a_circle ? vb : va;
+    const std::size_t k = a_circle ? s.feature_b : s.feature_a;
+    return cross(c.centre() - o.vertex(k), o.edge(k));
+  }
+  const bool a_vertex = s.contact == ContactKind::VertexEdge;
+  const ExactView<T>& vb_ = a_vertex ? va : vb;
+  const ExactView<T>& eb = a_vertex ? vb : va;
+  const std::size_t k = a_vertex ? s.feature_a : s.feature_b;  // vertex
+  const std::size_t j = a_vertex ? s.feature_b : s.feature_a;  // internal edge
+  return cross(vb_.vertex(k) - eb.vertex(j), eb.edge(j));
+}
+
+// Whether the scheduled line contact (CircleEdge, VertexEdge or EdgeVertex), apart at `now` and
+// approaching with its distance function convex, crosses before that function's minimum: its
+// line function sigma(tau) = s0 + s1 tau + s2 tau^2 (tau = t - now, from three exact values)
+// taken on the side the pair is on, the minimum s0 - s1^2 / (4 s2) against the radius times |e|
+// (squared: no square root) or against zero. Exactly at the radius is a graze: Misses.
+// Undecided where the test does not apply (touching or overlapping at now, not approaching,
+// concave, or behind a polygon's edge): the rounded prediction stands there.
+template <class T>
+GrazeVerdict exact_line_graze(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T>& s, const Exact& now) {
+  Exact f0 = line_value(a, b, s, now);
+  const Exact f1 = line_value(a, b, s, now + Exact(1)), f2 = line_value(a, b, s, now + Exact(2));
+  Exact s2 = (f2 - f1 - f1 + f0).half();
+  Exact s1 = f1 - f0 - s2;
+  const bool circle = s.contact == ContactKind::CircleEdge;
+  const ExactBody<T>& outline = !circle ? (s.contact == ContactKind::VertexEdge ? b : a)
+                                        : (a.shape->kind == ShapeKind::Circle ? b : a);
+  const int side = f0.sign();
+  if (side == 0 || (side < 0 && !(circle && outline.shape->kind == ShapeKind::Segment))) return GrazeVerdict::Undecided;
+  if (side < 0) {
+    f0 = -f0;
+    s1 = -s1;
+    s2 = -s2;
+  }
+  if (!(s2.sign() > 0 && s1.sign() < 0)) return GrazeVerdict::Undecided;
+  const Exact low = Exact(4) * s2 * f0 - s1 * s1;  // 4 s2 times the minimum of sigma
+  if (!circle) return low.sign() < 0 ? GrazeVerdict::Crosses : GrazeVerdict::Misses;
+  const bool a_circle = a.shape->kind == ShapeKind::Circle;
+  const Exact r = Exact::of((a_circle ? a : b).shape->radius);
+  const ExactVec e = outline.edge(a_circle ? s.feature_b : s.feature_a);
+  const Exact ee = dot(e, e);
+  if (!((f0 * f0 - r * r * ee).sign() > 0)) return GrazeVerdict::Undecided;  // touching or overlapping now
+  if (low.sign() < 0) return GrazeVerdict::Crosses;
+  const Exact reach = Exact(4) * s2 * r;  // 4 s2 times r, against 4 s2 times the minimum, squared
+  return (low * low - reach * reach * ee).sign() < 0 ? GrazeVerdict::Crosses : GrazeVerdict::Misses;
 }
 
 // A point's exact path in tau = t - now: c[0] + c[1] tau + c[2] tau^2, with D = now - t0:

@@ -175,8 +175,11 @@ template <class T> struct World<T>::Impl {
         if (exact || !overlapping) return exact;
       }
       c = circle_pair_contact(solver, p, horizon - now);  // the polynomial built once
-    } else {
+    } else if (solver == SolverKind::Fast) {
       c = predict_contact(solver, a.shape, ka, b.shape, kb, horizon - now);
+    } else {
+      const LineGrazes grazes(*this, lo, hi);
+      c = predict_contact(solver, a.shape, ka, b.shape, kb, horizon - now, &grazes);
     }
     if (!c) return std::nullopt;
     c->time = now + c->time;  // relative to absolute
@@ -250,6 +253,34 @@ template <class T> struct World<T>::Impl {
     refine::ContactSigner<T> sign(a, b, s);
     return refine::correctly_rounded_crossing(s.time, now, sign);
   }
+
+  // A line contact of the pair (lo, hi) whose rounded function passes within rounding of a
+  // double root, decided from the exact paths (refine.hpp, exact_line_graze); a crossing's time
+  // then correctly rounded from the exact paths, searched from `tau` (relative to now: the
+  // rounded root, else the rounded minimum) and written back. Counted in counts.exact_predictions.
+  GrazeVerdict line_graze(BodyIndex lo, BodyIndex hi, ContactKind kind, std::uint16_t fa, std::uint16_t fb, T& tau) {
+    ++counts.exact_predictions;
+    Scheduled<T> s;
+    s.lo = lo;
+    s.hi = hi;
+    s.contact = kind;
+    s.feature_a = fa;
+    s.feature_b = fb;
+    const refine::Path<T> pa = path_of(bodies[lo]), pb = path_of(bodies[hi]);
+    const GrazeVerdict g = refine::exact_line_graze(refine::exact_body(pa), refine::exact_body(pb), s, refine::Exact::of(now));
+    if (g != GrazeVerdict::Crosses) return g;
+    refine::ContactSigner<T> sign(pa, pb, s);
+    if (const std::optional<T> t = refine::correctly_rounded_crossing(T(now + tau), now, sign)) tau = *t - now;
+    return g;
+  }
+  struct LineGrazes final : GrazeJudge<T> {
+    Impl& w;
+    BodyIndex lo, hi;
+    LineGrazes(Impl& w_, BodyIndex lo_, BodyIndex hi_) : w(w_), lo(lo_), hi(hi_) {}
+    GrazeVerdict decide(ContactKind kind, std::uint16_t fa, std::uint16_t fb, T& tau) const override {
+      return w.line_graze(lo, hi, kind, fa, fb, tau);
+    }
+  };
 
   static bool relative_acc_zero(const Body& a, const Body& b) {
     const Vec2<T> aa = a.fixed ? Vec2<T>{} : a.acc, ab = b.fixed ? Vec2<T>{} : b.acc;

@@ -126,6 +126,17 @@ namespace pge {
 // the exact time; 2^-30 (9e-10) leaves a margin of four orders of magnitude.
 inline constexpr double kRefineWindowRelative = 0x1p-30;
 
+// Robust and certified: a line contact (a circle or a vertex against an edge: a distance to a
+// line, quadratic in time) whose rounded function has a local minimum within this fraction of
+// the magnitude of the terms it is computed from ((coordinates + radius + displacement) times
+// the edge's length) is a near-graze: whether the exact paths cross there, or only come within
+// rounding, is decided from them (engine/src/refine.hpp, exact_line_graze), not by the rounding
+// (a ball or box touching a ceiling at the apex of its bounce: a phantom or a miss). Dimensionless;
+// the value of refine.hpp's kNearGrazeRelative for two circles: far above the rounding of the
+// coefficients (a few hundred ulps of their scale), far below any real miss. Larger only sends
+// more predictions to the exact signs (slower, never wrong); smaller leaves more to the rounding.
+inline constexpr double kLineGrazeRelative = 0x1p-36;
+
 }  // namespace pge
 
 namespace pge {
