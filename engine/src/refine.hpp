@@ -440,45 +440,71 @@ bool near_graze(const Poly<T>& p, const Vec2<T>& d, const Vec2<T>& dv, const Vec
   return found;
 }
 
+// --- The exact paths as polynomials in tau = t - now (the line graze below, and the exact
+// contact polynomials of the refinement's re-decisions further down).
+
+// A point's exact path in tau = t - now: c[0] + c[1] tau + c[2] tau^2, with D = now - t0:
+// c0 = p(now), c1 = v0 + acc D, c2 = acc / 2 (a fixed body's points stay put).
+template <class T> void exact_point_path(const ExactBody<T>& x, const Exact& now, ExactVec c[3]) {
+  c[0] = x.position(now);
+  c[1] = ExactVec{};
+  c[2] = ExactVec{};
+  if (x.fixed) return;
+  const Exact dt = now - x.t0;
+  c[1] = x.v0 + x.half_acc * dt + x.half_acc * dt;
+  c[2] = x.half_acc;
+}
+
+// The same for vertex k of a body.
+template <class T> void exact_vertex_path(const ExactBody<T>& x, std::size_t k, const Exact& now, ExactVec c[3]) {
+  exact_point_path(x, now, c);
+  c[0] = x.vertex(c[0], k);
+}
+
+// The line function of a scheduled line contact (CircleEdge, VertexEdge or EdgeVertex) in
+// tau = t - now, sigma[0] + sigma[1] tau + sigma[2] tau^2: cross(centre - edge start, e) for a
+// circle against edge e, cross(vertex - edge start, e) for a vertex against it (positive in
+// front of a polygon's edge).
+template <class T>
+void exact_line_poly(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T>& s, const Exact& now,
+                     Exact sigma[3]) {
+  ExactVec p[3], start[3];
+  ExactVec e;
+  if (s.contact == ContactKind::CircleEdge) {
+    const bool a_circle = a.shape->kind == ShapeKind::Circle;
+    const std::size_t k = a_circle ? s.feature_b : s.feature_a;
+    exact_point_path(a_circle ? a : b, now, p);
+    exact_vertex_path(a_circle ? b : a, k, now, start);
+    e = (a_circle ? b : a).edge(k);
+  } else {
+    const bool a_vertex = s.contact == ContactKind::VertexEdge;
+    const std::size_t k = a_vertex ? s.feature_a : s.feature_b;  // vertex
+    const std::size_t j = a_vertex ? s.feature_b : s.feature_a;  // edge
+    exact_vertex_path(a_vertex ? a : b, k, now, p);
+    exact_vertex_path(a_vertex ? b : a, j, now, start);
+    e = (a_vertex ? b : a).edge(j);
+  }
+  for (int i = 0; i < 3; ++i) sigma[i] = cross(p[i] - start[i], e);
+}
+
 // --- Near-grazes of line contacts, decided exactly (robust and certified).
 // A circle or a vertex against an edge meets it where a distance to the edge's line, quadratic
 // in time for translating bodies, reaches the radius (or zero). At a double root (a ball touching
 // a ceiling at the apex of its bounce) the rounded quadratic crosses or not by its rounding:
 // contact_common.hpp's near_line_graze finds such a minimum, and the exact paths decide it here.
 
-// The line function of the scheduled line contact at time t: cross(centre - edge start, e) for
-// a circle against edge e, cross(vertex - edge start, e) for a vertex against it (positive in
-// front of a polygon's edge).
-template <class T> Exact line_value(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T>& s, const Exact& t) {
-  const ExactView<T> va(a, t), vb(b, t);
-  if (s.contact == ContactKind::CircleEdge) {
-    const bool a_circle = va.kind() == ShapeKind::Circle;
-    const ExactView<T>& c = a_circle ? va : vb;
-    const ExactView<T>& o = a_circle ? vb : va;
-    const std::size_t k = a_circle ? s.feature_b : s.feature_a;
-    return cross(c.centre() - o.vertex(k), o.edge(k));
-  }
-  const bool a_vertex = s.contact == ContactKind::VertexEdge;
-  const ExactView<T>& vb_ = a_vertex ? va : vb;
-  const ExactView<T>& eb = a_vertex ? vb : va;
-  const std::size_t k = a_vertex ? s.feature_a : s.feature_b;  // vertex
-  const std::size_t j = a_vertex ? s.feature_b : s.feature_a;  // internal edge
-  return cross(vb_.vertex(k) - eb.vertex(j), eb.edge(j));
-}
-
 // Whether the scheduled line contact (CircleEdge, VertexEdge or EdgeVertex), apart at `now` and
 // approaching with its distance function convex, crosses before that function's minimum: its
-// line function sigma(tau) = s0 + s1 tau + s2 tau^2 (tau = t - now, from three exact values)
-// taken on the side the pair is on, the minimum s0 - s1^2 / (4 s2) against the radius times |e|
+// line function sigma(tau) = s0 + s1 tau + s2 tau^2 (tau = t - now, exact_line_poly) taken on
+// the side the pair is on, the minimum s0 - s1^2 / (4 s2) against the radius times |e|
 // (squared: no square root) or against zero. Exactly at the radius is a graze: Misses.
 // Undecided where the test does not apply (touching or overlapping at now, not approaching,
 // concave, or behind a polygon's edge): the rounded prediction stands there.
 template <class T>
 GrazeVerdict exact_line_graze(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T>& s, const Exact& now) {
-  Exact f0 = line_value(a, b, s, now);
-  const Exact f1 = line_value(a, b, s, now + Exact(1)), f2 = line_value(a, b, s, now + Exact(2));
-  Exact s2 = (f2 - f1 - f1 + f0).half();
-  Exact s1 = f1 - f0 - s2;
+  Exact sigma[3];
+  exact_line_poly(a, b, s, now, sigma);
+  Exact f0 = sigma[0], s1 = sigma[1], s2 = sigma[2];
   const bool circle = s.contact == ContactKind::CircleEdge;
   const ExactBody<T>& outline = !circle ? (s.contact == ContactKind::VertexEdge ? b : a)
                                         : (a.shape->kind == ShapeKind::Circle ? b : a);
@@ -500,25 +526,6 @@ GrazeVerdict exact_line_graze(const ExactBody<T>& a, const ExactBody<T>& b, cons
   if (low.sign() < 0) return GrazeVerdict::Crosses;
   const Exact reach = Exact(4) * s2 * r;  // 4 s2 times r, against 4 s2 times the minimum, squared
   return (low * low - reach * reach * ee).sign() < 0 ? GrazeVerdict::Crosses : GrazeVerdict::Misses;
-}
-
-// A point's exact path in tau = t - now: c[0] + c[1] tau + c[2] tau^2, with D = now - t0:
-// c0 = p(now), c1 = v0 + acc D, c2 = acc / 2 (a fixed body's points stay put). `offset`: a
-// vertex's place in the body (its local vertex, or for a fixed shape its world vertex).
-template <class T> void exact_point_path(const ExactBody<T>& x, const Exact& now, ExactVec c[3]) {
-  c[0] = x.position(now);
-  c[1] = ExactVec{};
-  c[2] = ExactVec{};
-  if (x.fixed) return;
-  const Exact dt = now - x.t0;
-  c[1] = x.v0 + x.half_acc * dt + x.half_acc * dt;
-  c[2] = x.half_acc;
-}
-
-// The same for vertex k of a body.
-template <class T> void exact_vertex_path(const ExactBody<T>& x, std::size_t k, const Exact& now, ExactVec c[3]) {
-  exact_point_path(x, now, c);
-  c[0] = x.vertex(c[0], k);
 }
 
 // Exact coefficients f[0..4] as a polynomial in integers (every coefficient times
@@ -577,15 +584,17 @@ std::optional<detail::exact::IntPoly> exact_feature_poly(const ExactBody<T>& a, 
       const ExactBody<T>& c = a_circle ? a : b;
       const ExactBody<T>& o = a_circle ? b : a;
       const std::size_t k = a_circle ? s.feature_b : s.feature_a;
-      ExactVec pc[3], pv[3], q[3];
-      exact_point_path(c, now, pc);
-      exact_vertex_path(o, k, now, pv);
-      for (int i = 0; i < 3; ++i) q[i] = pc[i] - pv[i];
       const Exact r = Exact::of(c.shape->radius);
-      if (s.contact == ContactKind::CircleVertex) return exact_distance_poly(q, r);
+      if (s.contact == ContactKind::CircleVertex) {
+        ExactVec pc[3], pv[3], q[3];
+        exact_point_path(c, now, pc);
+        exact_vertex_path(o, k, now, pv);
+        for (int i = 0; i < 3; ++i) q[i] = pc[i] - pv[i];
+        return exact_distance_poly(q, r);
+      }
       const ExactVec e = o.edge(k);
       Exact side[3], f[5];
-      for (int i = 0; i < 3; ++i) side[i] = cross(q[i], e);
+      exact_line_poly(a, b, s, now, side);
       if (o.shape->kind == ShapeKind::Polygon && side[0].sign() <= 0) return std::nullopt;
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) f[i + j] = f[i + j] + side[i] * side[j];
@@ -594,17 +603,8 @@ std::optional<detail::exact::IntPoly> exact_feature_poly(const ExactBody<T>& a, 
     }
     case ContactKind::VertexEdge:
     case ContactKind::EdgeVertex: {
-      const bool a_vertex = s.contact == ContactKind::VertexEdge;
-      const ExactBody<T>& vb = a_vertex ? a : b;
-      const ExactBody<T>& eb = a_vertex ? b : a;
-      const std::size_t k = a_vertex ? s.feature_a : s.feature_b;
-      const std::size_t j = a_vertex ? s.feature_b : s.feature_a;
-      ExactVec pv[3], pe[3];
-      exact_vertex_path(vb, k, now, pv);
-      exact_vertex_path(eb, j, now, pe);
-      const ExactVec e = eb.edge(j);
       Exact f[5];
-      for (int i = 0; i < 3; ++i) f[i] = cross(pv[i] - pe[i], e);
+      exact_line_poly(a, b, s, now, f);
       return integer_poly(f);
     }
   }

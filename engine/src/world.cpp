@@ -266,11 +266,10 @@ template <class T> struct World<T>::Impl {
     s.contact = kind;
     s.feature_a = fa;
     s.feature_b = fb;
-    const refine::Path<T> pa = path_of(bodies[lo]), pb = path_of(bodies[hi]);
-    const GrazeVerdict g = refine::exact_line_graze(refine::exact_body(pa), refine::exact_body(pb), s, refine::Exact::of(now));
+    const GrazeVerdict g = refine::exact_line_graze(exact_of(bodies[lo]), exact_of(bodies[hi]), s, refine::Exact::of(now));
     if (g != GrazeVerdict::Crosses) return g;
-    refine::ContactSigner<T> sign(pa, pb, s);
-    if (const std::optional<T> t = refine::correctly_rounded_crossing(T(now + tau), now, sign)) tau = *t - now;
+    s.time = T(now + tau);
+    if (const std::optional<T> t = refined_time(s)) tau = *t - now;
     return g;
   }
   struct LineGrazes final : GrazeJudge<T> {
@@ -295,18 +294,15 @@ template <class T> struct World<T>::Impl {
   // Two circles that pass within rounding of touching: predicted from the exact paths
   // (refine.hpp). Counted in counts.exact_predictions.
   // `overlapping`: whether the pair overlaps exactly at `now`.
-  // `turns`: decide the turning-overlap rule too (an overlapping, receding pair), as
-  // refine_near_top does for a contact the rule scheduled.
-  std::optional<PredictedContact<T>> exact_circle_prediction(const Body& a, const Body& b, bool& overlapping,
-                                                             bool turns = false) {
+  std::optional<PredictedContact<T>> exact_circle_prediction(const Body& a, const Body& b, bool& overlapping) {
     ++counts.exact_predictions;
     detail::exact::IntPoly poly = refine::exact_circle_poly(exact_of(a), exact_of(b), refine::Exact::of(now));
     overlapping = poly.c[0] < 0;
     // Overlapping and receding (not decreasing at now): no crossing now, and whatever follows
     // belongs to the turning-overlap rule or to a later crossing, which the rounded prediction
-    // handles (the callers fall back to it, and refine_near_top decides it exactly once it is
-    // near the top); skip the Sturm chain, the costly part.
-    if (!turns && overlapping &&
+    // handles (the caller falls back to it, and refine_near_top decides it exactly once it is
+    // near the top, exact_contact); skip the Sturm chain, the costly part.
+    if (overlapping &&
         detail::exact::sign_just_after(detail::exact::derivative(poly), detail::exact::Dyadic{}) >= 0)
       return std::nullopt;
     const std::optional<ExactRoot> root = exact_first_contact(std::move(poly));
