@@ -181,10 +181,12 @@ std::optional<VertexEdgeHit<T>> judge_root(const OutlineView<T>& o, std::size_t 
 // The earliest approaching contact of vertex k of P with edge j of Q in [0, horizon]. The
 // contact function is the distance of the vertex in front of the edge's line times |e|, a
 // quadratic; a root counts where judge_root says so. A near-graze in front of the edge is
-// decided by `grazes` (if given) as the feature pair (fa, fb) of the contact `kind`.
+// decided by `grazes` (if given) as the feature pair (fa, fb) of the contact `kind`;
+// `pair_overlaps`: the rounded bodies overlap now (least_penetration).
 template <class T>
 std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const OutlineView<T>& o, std::size_t k,
-                                                    std::size_t j, StartRule rule, const T& scale, const T& horizon,
+                                                    std::size_t j, StartRule rule, bool pair_overlaps, const T& scale,
+                                                    const T& horizon,
                                                     const GrazeJudge<T>* grazes = nullptr,
                                                     ContactKind kind = ContactKind::VertexEdge, std::uint16_t fa = 0,
                                                     std::uint16_t fb = 0) {
@@ -210,11 +212,13 @@ std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const Out
     const GrazeVerdict g = grazes->decide(kind, fa, fb, t);
     if (g == GrazeVerdict::Misses) return std::nullopt;
     if (g == GrazeVerdict::Crosses) {
-      // Inside the edge a vertex crossing its line from the front enters Q (a segment too: the
-      // bodies do not overlap before, so P lies on that side); at a corner the corner rule
-      // judges the crossing, and if it cannot tell, the rounded roots decide.
+      // Inside the edge a vertex crossing its line from the front enters Q (a segment too, when
+      // the bodies do not overlap now: P lies on that side). Where they overlap, P may lie on
+      // both sides of a segment's line, and a vertex coming back to its body's side enters
+      // nothing: judge_root's cone decides, as at a corner; if it cannot tell, the rounded
+      // roots decide.
       const Vec2<T> d = d0 + o.dv * t + o.da * (t * t / T(2));
-      if (locate_on_edge(d, o.dv + o.da * t, e, o.Q.edge_length[j], scale) == EdgeSpot::Interior)
+      if (!pair_overlaps && locate_on_edge(d, o.dv + o.da * t, e, o.Q.edge_length[j], scale) == EdgeSpot::Interior)
         return VertexEdgeHit<T>{t, false, false};
       if (auto h = judge_root(o, k, j, d0, t, false, scale)) return h;
     }
@@ -234,8 +238,8 @@ void scan_vertex_edge(SolverKind solver, const OutlineView<T>& o, ContactKind ki
       const StartRule rule = real ? StartRule::OverlapCollides : StartRule::CrossingsOnly;
       const std::uint16_t vk = feature_index(k), ej = feature_index(j);
       const bool p_is_a = kind == ContactKind::VertexEdge;
-      const auto hit = vertex_edge_contact(solver, o, k, j, rule, scale, horizon, grazes, kind, p_is_a ? vk : ej,
-                                           p_is_a ? ej : vk);
+      const auto hit = vertex_edge_contact(solver, o, k, j, rule, overlap.has_value(), scale, horizon, grazes, kind,
+                                           p_is_a ? vk : ej, p_is_a ? ej : vk);
       if (!hit) continue;
       keep_earliest(best, PredictedContact<T>{hit->t, kind, p_is_a ? vk : ej, p_is_a ? ej : vk, hit->overlap,
                                               hit->corner});
