@@ -154,39 +154,75 @@ template <class T> struct VertexEdgeHit {
   bool corner;
 };
 
+// Which side of edge j's line P's body lies on after P has moved by `motion` relative to Q: the
+// sign of the mean of its vertices' distances in front of the line (every vertex moves alike),
+// +1 in front, -1 behind, 0 within the rounding of those distances.
+template <class T> int body_side(const OutlineView<T>& o, std::size_t j, const Vec2<T>& motion, const T& scale) {
+  using std::abs;
+  const Vec2<T>& e = o.Q.edges[j];
+  T sum{0}, size{0};
+  for (std::size_t k = 0; k < o.P.vertex_count(); ++k) {
+    const Vec2<T> d = o.offset(k, j) + motion;
+    sum += cross(d, e);
+    size += abs(d.x * e.y) + abs(d.y * e.x);
+  }
+  const T rounding = T(64) * std::numeric_limits<T>::epsilon() *
+                     (size + T(o.P.vertex_count()) * scale * (abs(e.x) + abs(e.y)));
+  if (sum > rounding) return 1;
+  if (sum < -rounding) return -1;
+  return 0;
+}
+
 // Whether a downward root t of the contact function of vertex k of P with edge j of Q (d0:
 // the vertex relative to the edge's start at t = 0) is a collision, and of which kind.
 template <class T>
 std::optional<VertexEdgeHit<T>> judge_root(const OutlineView<T>& o, std::size_t k, std::size_t j, const Vec2<T>& d0,
                                            const T& t, bool overlap, const T& scale) {
   const Vec2<T>& e = o.Q.edges[j];
-  const Vec2<T> d = d0 + o.dv * t + o.da * (t * t / T(2));
+  const Vec2<T> motion = o.dv * t + o.da * (t * t / T(2));
+  const Vec2<T> d = d0 + motion;
   const Vec2<T> u = o.dv + o.da * t;
   const EdgeSpot spot = locate_on_edge(d, u, e, o.Q.edge_length[j], scale);
   if (spot == EdgeSpot::Off) return std::nullopt;
   // Crossing a polygon's edge inside it is entering the polygon. A segment has two sides and no
-  // inside: a vertex crossing its line enters only from the side P's body is on (rounding can
-  // leave a vertex that has just bounced an ulp beyond the line), which the overlap cone tells,
-  // as it does at corners.
-  if (overlap || (spot == EdgeSpot::Interior && o.Q.kind != ShapeKind::Segment))
-    return VertexEdgeHit<T>{t, overlap, false};
-  const bool corner = spot != EdgeSpot::Interior;
+  // inside: a vertex crossing its line inside it enters from the side P's body is on, and comes
+  // back out of an overlap (rounding can leave a vertex that has just bounced an ulp beyond the
+  // line) from the other; the body's side is told by its vertices' mean, and where that is
+  // within rounding of the line, by the overlap cone, as at corners. (The cone alone misjudges
+  // a vertex whose own edge lies along the segment, sliding along it: a box on an incline at
+  // decimal coordinates, fixtures/regressions/box-placed-on-an-incline.json.)
+  const auto inside = [&]() -> std::optional<VertexEdgeHit<T>> {
+    if (o.Q.kind == ShapeKind::Segment) {
+      const int side = body_side(o, j, motion, scale);
+      if (side < 0) return std::nullopt;
+      if (side == 0) {
+        const std::optional<Cone<T>> cone = overlap_cone(o.P, k, std::array<Vec2<T>, 2>{e, -e});
+        if (!cone || !enters_cone(*cone, u, o.da)) return std::nullopt;
+      }
+    }
+    return VertexEdgeHit<T>{t, false, false};
+  };
+  if (overlap) return VertexEdgeHit<T>{t, overlap, false};
+  if (spot == EdgeSpot::Interior) return inside();
+  // Near an end (the corner slack is widened by the tangential over the normal speed, the
+  // rounding of the root's time moved along the edge): the corner rule; a vertex the corner
+  // rule rejects that lies inside the edge at that time by the slack unwidened is judged as
+  // inside it (a vertex sliding almost along the edge, whose own edge lies along it, makes the
+  // widened slack span the whole edge: the box on the incline again).
   const std::size_t w = spot == EdgeSpot::End ? (j + 1) % o.Q.vertex_count() : j;
-  const std::optional<Cone<T>> cone =
-      overlap_cone(o.P, k, corner ? interior_directions(o.Q, w) : std::array<Vec2<T>, 2>{e, -e});
-  if (!cone || !enters_cone(*cone, u, o.da)) return std::nullopt;  // passed or left, not entered
-  return VertexEdgeHit<T>{t, false, corner};
+  const std::optional<Cone<T>> cone = overlap_cone(o.P, k, interior_directions(o.Q, w));
+  if (cone && enters_cone(*cone, u, o.da)) return VertexEdgeHit<T>{t, false, true};
+  if (locate_on_edge(d, Vec2<T>{}, e, o.Q.edge_length[j], scale) == EdgeSpot::Interior) return inside();
+  return std::nullopt;  // passed or left, not entered
 }
 
 // The earliest approaching contact of vertex k of P with edge j of Q in [0, horizon]. The
 // contact function is the distance of the vertex in front of the edge's line times |e|, a
 // quadratic; a root counts where judge_root says so. A near-graze in front of the edge is
-// decided by `grazes` (if given) as the feature pair (fa, fb) of the contact `kind`;
-// `pair_overlaps`: the rounded bodies overlap now (least_penetration).
+// decided by `grazes` (if given) as the feature pair (fa, fb) of the contact `kind`.
 template <class T>
 std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const OutlineView<T>& o, std::size_t k,
-                                                    std::size_t j, StartRule rule, bool pair_overlaps, const T& scale,
-                                                    const T& horizon,
+                                                    std::size_t j, StartRule rule, const T& scale, const T& horizon,
                                                     const GrazeJudge<T>* grazes = nullptr,
                                                     ContactKind kind = ContactKind::VertexEdge, std::uint16_t fa = 0,
                                                     std::uint16_t fb = 0) {
@@ -211,15 +247,8 @@ std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const Out
     if (first_root) t = *first_root;
     const GrazeVerdict g = grazes->decide(kind, fa, fb, t);
     if (g == GrazeVerdict::Misses) return std::nullopt;
+    // A crossing: judged as a root is (inside a segment, by the side P's body is on).
     if (g == GrazeVerdict::Crosses) {
-      // Inside the edge a vertex crossing its line from the front enters Q (a segment too, when
-      // the bodies do not overlap now: P lies on that side). Where they overlap, P may lie on
-      // both sides of a segment's line, and a vertex coming back to its body's side enters
-      // nothing: judge_root's cone decides, as at a corner; if it cannot tell, the rounded
-      // roots decide.
-      const Vec2<T> d = d0 + o.dv * t + o.da * (t * t / T(2));
-      if (!pair_overlaps && locate_on_edge(d, o.dv + o.da * t, e, o.Q.edge_length[j], scale) == EdgeSpot::Interior)
-        return VertexEdgeHit<T>{t, false, false};
       if (auto h = judge_root(o, k, j, d0, t, false, scale)) return h;
     }
   }
@@ -238,8 +267,8 @@ void scan_vertex_edge(SolverKind solver, const OutlineView<T>& o, ContactKind ki
       const StartRule rule = real ? StartRule::OverlapCollides : StartRule::CrossingsOnly;
       const std::uint16_t vk = feature_index(k), ej = feature_index(j);
       const bool p_is_a = kind == ContactKind::VertexEdge;
-      const auto hit = vertex_edge_contact(solver, o, k, j, rule, overlap.has_value(), scale, horizon, grazes, kind,
-                                           p_is_a ? vk : ej, p_is_a ? ej : vk);
+      const auto hit = vertex_edge_contact(solver, o, k, j, rule, scale, horizon, grazes, kind, p_is_a ? vk : ej,
+                                           p_is_a ? ej : vk);
       if (!hit) continue;
       keep_earliest(best, PredictedContact<T>{hit->t, kind, p_is_a ? vk : ej, p_is_a ? ej : vk, hit->overlap,
                                               hit->corner});
