@@ -23,32 +23,57 @@ struct Instant {
   std::vector<ExactVec> position, velocity;  // every body (fixed: its position, at rest)
 };
 
-// Every overlapping pair at one instant, with its depth (a sweep over x of boxes, then exact).
-std::map<Pair, double> overlaps(const ExactState& s, const Instant& x) {
-  const std::size_t n = s.bodies.size();
-  std::vector<Placed> placed;
-  std::vector<Box> boxes;
+// The pairs (not both fixed) whose boxes overlap: a sweep over x.
+std::vector<Pair> box_pairs(const ExactState& s, const std::vector<Box>& boxes) {
+  const std::size_t n = boxes.size();
   std::vector<BodyIndex> order(n);
-  for (BodyIndex i = 0; i < n; ++i) {
-    placed.push_back(place(s.bodies[i], x.position[i]));
-    boxes.push_back(bounding_box(placed.back()));
-    order[i] = i;
-  }
+  for (BodyIndex i = 0; i < n; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&boxes](BodyIndex i, BodyIndex j) {
     return boxes[i].lo_x < boxes[j].lo_x || (boxes[i].lo_x == boxes[j].lo_x && i < j);
   });
-  std::map<Pair, double> out;
+  std::vector<Pair> out;
   for (std::size_t p = 0; p < n; ++p) {
     const BodyIndex i = order[p];
     for (std::size_t q = p + 1; q < n && boxes[order[q]].lo_x <= boxes[i].hi_x; ++q) {
       const BodyIndex j = order[q];
       if (s.bodies[i].fixed && s.bodies[j].fixed) continue;
       if (boxes[j].lo_y > boxes[i].hi_y || boxes[i].lo_y > boxes[j].hi_y) continue;
-      const Separation sep = separation(placed[i], placed[j]);
-      if (sep.sign < 0) out.emplace(std::minmax(i, j), sep.depth);
+      out.push_back(std::minmax(i, j));
     }
   }
+  std::sort(out.begin(), out.end());
   return out;
+}
+
+// Every overlapping pair at one instant, with its depth.
+std::map<Pair, double> overlaps(const ExactState& s, const Instant& x) {
+  std::vector<Placed> placed;
+  std::vector<Box> boxes;
+  for (BodyIndex i = 0; i < s.bodies.size(); ++i) {
+    placed.push_back(place(s.bodies[i], x.position[i]));
+    boxes.push_back(bounding_box(placed.back()));
+  }
+  std::map<Pair, double> out;
+  for (const Pair& p : box_pairs(s, boxes)) {
+    const Separation sep = separation(placed[p.first], placed[p.second]);
+    if (sep.sign < 0) out.emplace(p, sep.depth);
+  }
+  return out;
+}
+
+// A box holding the body all through a step of length dt from x: its box at the start grown by
+// |v| dt + |a| dt^2 / 2 (and 1/1000 of that more, for the rounding of these doubles).
+Box swept_box(const ExactBody& b, const ExactVec& p, const ExactVec& v, double dt) {
+  Box box = bounding_box(place(b, p));
+  if (b.fixed) return box;
+  const double reach_x = std::abs(v.x.to_double()) * dt + std::abs(b.field_acc.x.to_double()) * dt * dt / 2;
+  const double reach_y = std::abs(v.y.to_double()) * dt + std::abs(b.field_acc.y.to_double()) * dt * dt / 2;
+  constexpr double kGrow = 1.001;
+  box.lo_x -= reach_x * kGrow;
+  box.hi_x += reach_x * kGrow;
+  box.lo_y -= reach_y * kGrow;
+  box.hi_y += reach_y * kGrow;
+  return box;
 }
 
 struct Totals {
@@ -118,7 +143,7 @@ class StepReferee {
       const Instant after = instant_of(k, t_before);
       const std::map<Pair, double> overlap_after = overlaps(s, after);
       judge_step(k, t_before, before, overlap_before, overlap_after, reports_of(k));
-      measure(k, after, overlap_after, first);
+      measure(after, overlap_after, first);
       before = after;
       overlap_before = overlap_after;
       t_before = step.t;
@@ -230,8 +255,11 @@ class StepReferee {
       ExactTime time;
     };
     std::vector<Found> found;
-    for (const Pair& p : candidate_pairs(frame, features_, tau_hi, options_.referee.filter, nullptr, pair_count(frame),
-                                         {kNoBody, kNoBody}, n)) {
+    // dt rounded up: the boxes must hold the whole step.
+    const double dt = std::nextafter(tau_hi.to_double(), std::numeric_limits<double>::infinity());
+    std::vector<Box> boxes;
+    for (BodyIndex i = 0; i < s.bodies.size(); ++i) boxes.push_back(swept_box(s.bodies[i], x.position[i], x.velocity[i], dt));
+    for (const Pair& p : box_pairs(s, boxes)) {
       if (overlap_before.count(p)) continue;  // overlapping at the start: a contact already
       if (const auto r = pair_contact(frame, features_, p.first, p.second, tau_hi, window, options_.referee.filter, n))
         found.push_back({p, ExactTime(now, r->tau)});
@@ -335,7 +363,7 @@ class StepReferee {
     out_.contacts[index].miss = why;
   }
 
-  void measure(std::size_t k, const Instant& after, const std::map<Pair, double>& overlap_after, const Totals& first) {
+  void measure(const Instant& after, const std::map<Pair, double>& overlap_after, const Totals& first) {
     const ExactState& s = model_.state;
     double deepest = 0;
     for (const auto& [pair, depth] : overlap_after) {
@@ -353,7 +381,6 @@ class StepReferee {
     const double dpx = (t.momentum.x - first.momentum.x).to_double(), dpy = (t.momentum.y - first.momentum.y).to_double();
     const double p0 = std::hypot(first.momentum.x.to_double(), first.momentum.y.to_double());
     out_.summary.largest_momentum_drift = std::max(out_.summary.largest_momentum_drift, std::abs(relative(std::hypot(dpx, dpy), p0)));
-    (void)k;
   }
 
   const Trace& trace_;
