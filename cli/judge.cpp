@@ -76,7 +76,7 @@ void print_steps(const std::string& path, const LoadedScene& loaded, const Trace
   std::size_t shown = 0;
   for (const oracle::StepContact& c : j.contacts)
     if ((c.verdict == oracle::StepVerdict::Missed || c.verdict == oracle::StepVerdict::Phantom) && shown++ < kFailuresShown)
-      fmt::print("  FAIL: {} (t = {:.17g})\n", oracle::contact_text(c), trace.steps[c.step].t);
+      fmt::print("  FAIL: {}; the step ends at t = {:.17g}\n", oracle::contact_text(c), trace.steps[c.step].t);
   fmt::print("  result: {}\n", j.failed() ? "FAIL" : "pass");
 }
 
