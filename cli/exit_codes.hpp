@@ -23,7 +23,7 @@ inline constexpr const char* kExitCodeHelp =
     "Exit codes: 0 ok; 1 internal error; 2 bad command line; 3 bad scene file;\n"
     "  4 event storm; 5 scene uses an unsupported feature; 6 cannot write output;\n"
     "  7 check found a miss, a phantom, a tunnel, a time past the solver's promise or a failed\n"
-    "  expectation (judge: a miss or a phantom); 8 fuzz found a failing scene;\n"
+    "  expectation, or judge a miss or a phantom; 8 fuzz found a failing scene;\n"
     "  9 gate found a regression; 10 results or baseline missing or corrupt (the gate fails closed);\n"
     "  11 run found a body that passed through a fixed body (tunnelling);\n"
     "  12 judge was given a bad trace (unreadable, malformed, or not a run of the scene).";
