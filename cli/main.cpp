@@ -4,6 +4,7 @@
 #include "exit_codes.hpp"
 #include "fuzz.hpp"
 #include "generate.hpp"
+#include "judge.hpp"
 #include "render.hpp"
 #include "report.hpp"
 #include "run.hpp"
@@ -322,6 +323,34 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("--json", compare.json, "Also write the rows as JSON to this file");
   compare_cmd->add_flag("--quiet,-q", compare.quiet, "No table on stdout");
 
+  JudgeCommandOptions judge;
+  CLI::App* judge_cmd = app.add_subcommand(
+      "judge",
+      "Judge another engine's trace of a scene (pge-trace/2, docs/formats.md) by the exact oracle: events mode "
+      "(each collision: agree, time error, misorder, miss, phantom, as pge check) or steps mode (each exact "
+      "contact: on time, late by k steps, missed, phantom; overlap depth, energy and momentum drift per step); "
+      "exit 7 on a miss or a phantom, 12 on a bad trace.");
+  judge_cmd->footer(std::string(
+      "Steps mode: from each step's start state, every moving body on the scene's closed-form path (its\n"
+      "  constant acceleration), the referee finds the exact first contact of each pair apart at the start,\n"
+      "  each body followed up to its first contact in the step. A contact is on time when the engine reports\n"
+      "  the pair in that step; late by k when it reports it k steps later, the pair overlapping at every\n"
+      "  step end between, never deeper than --overlap-bound; missed when the pair is apart again before a\n"
+      "  report (pass-through: tunnelling), overlaps deeper first, or the trace ends; phantom when reported in\n"
+      "  a step the pair is apart through (at its start and end, no exact contact between). A pair found\n"
+      "  overlapping at a step's end without an exact contact counts as an (off-path) contact of that step.\n"
+      "Events mode: the trace's pre-collision states and post-collision velocities are the motions the\n"
+      "  referee follows; a state more than 1e-6 (relative) off that path is a bad trace. An end record\n"
+      "  with \"stop\": \"reached-until\" makes a contact left before its time a miss.\n") + kExitCodeHelp);
+  judge_cmd->add_option("trace", judge.trace, "A trace file (pge-trace/2 JSON Lines, events or steps mode)")->required();
+  judge_cmd->add_option("--scene", judge.scene, "The scene the trace is a run of (pge-scene/1 JSON)")->required();
+  judge_cmd->add_option("--json", judge.json, "Also write the summary and every verdict to FILE (JSON, pge-judge/1)");
+  judge_cmd->add_option("--overlap-bound", judge.overlap_bound,
+                        "Steps mode: an unreported overlap deeper than this fraction of the pair's contact distance is a miss")
+      ->check(kPositive)
+      ->capture_default_str();
+  judge_cmd->add_flag("--quiet,-q", judge.quiet, "Print no summary (a failure's first line still goes to stderr)");
+
   RenderOptions render;
   CLI::App* render_cmd = app.add_subcommand(
       "render", "A picture of a scene and its trajectory, collision points marked: FILE.svg, or FILE.html (animated).");
@@ -386,6 +415,7 @@ int main(int argc, char** argv) {
     }
     if (render_cmd->parsed()) return render_command(render);
     if (compare_cmd->parsed()) return compare_command(compare);
+    if (judge_cmd->parsed()) return judge_command(judge);
     if (fuzz_cmd->parsed()) {
       unsigned shard = 0, shards = 0;
       if (!parse_shard(fuzz_shard, shard, shards)) {

@@ -54,7 +54,7 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
 
   if (trace) {
     trace->header(scene, scalar_name(ScalarTraits<T>::kind), solver_name(world.solver()), to_double(world.horizon()));
-    world.on_collision([&](const CollisionInfo<T>& c) { trace->collision(scene, c); });
+    world.on_collision([&](const CollisionInfo<T>& c) { trace->collision(scene, world, c); });
     world.on_frame([&](const World<T>& w, T t) { trace->frame(w, t); });
   }
 

@@ -29,7 +29,7 @@ bool TraceWriter::close() {
 }
 
 void TraceWriter::header(const Scene& scene, std::string_view scalar, std::string_view solver, double horizon) {
-  fmt::print(file_, "{{\"format\":\"pge-trace/1\",\"scene\":{},\"scalar\":\"{}\",\"solver\":\"{}\",\"until\":{},"
+  fmt::print(file_, "{{\"format\":\"pge-trace/2\",\"mode\":\"events\",\"scene\":{},\"scalar\":\"{}\",\"solver\":\"{}\",\"until\":{},"
              "\"bodies\":[",
              quoted(scene.name), scalar, solver, horizon);
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) fmt::print(file_, "{}{}", i ? "," : "", quoted(scene.bodies[i].id));

@@ -1,4 +1,5 @@
-// The event trace: JSON Lines, one object per line (format "pge-trace/1", see docs/formats.md).
+// The event trace: JSON Lines, one object per line (format "pge-trace/2" in events mode, see
+// docs/formats.md), which `pge judge` reads.
 // Numbers are written in shortest round-trip form; extended scalars are rounded to double.
 #pragma once
 
@@ -30,14 +31,18 @@ class TraceWriter {
 
   void header(const Scene& scene, std::string_view scalar, std::string_view solver, double horizon);
 
-  template <class T> void collision(const Scene& scene, const CollisionInfo<T>& c) {
+  // Called from the world's collision callback: the world holds the pair's motions after the
+  // collision, rebased to its time, so their p0 are the positions at the contact.
+  template <class T> void collision(const Scene& scene, const World<T>& w, const CollisionInfo<T>& c) {
+    const Vec2<T> pa = w.motion(c.a).p0, pb = w.motion(c.b).p0;
     fmt::print(file_,
                "{{\"event\":\"collision\",\"t\":{},\"a\":{},\"b\":{},\"contact\":\"{}\",\"features\":[{},{}],"
                "\"normal\":[{},{}],\"point\":[{},{}],\"approach_speed\":{},\"impulse\":{},\"gap\":{},"
-               "\"overlap_rule\":{},\"va\":[{},{}],\"vb\":[{},{}]}}\n",
+               "\"overlap_rule\":{},\"before\":[[{},{},{},{}],[{},{},{},{}]],\"va\":[{},{}],\"vb\":[{},{}]}}\n",
                d(c.time), quoted(scene.bodies[c.a].id), quoted(scene.bodies[c.b].id), contact_kind_name(c.contact),
                c.feature_a, c.feature_b, d(c.normal.x), d(c.normal.y), d(c.point.x), d(c.point.y),
-               d(c.approach_speed), d(c.impulse), d(c.gap), c.at_start_overlap ? "true" : "false", d(c.va_after.x),
+               d(c.approach_speed), d(c.impulse), d(c.gap), c.at_start_overlap ? "true" : "false", d(pa.x), d(pa.y),
+               d(c.va_before.x), d(c.va_before.y), d(pb.x), d(pb.y), d(c.vb_before.x), d(c.vb_before.y), d(c.va_after.x),
                d(c.va_after.y), d(c.vb_after.x), d(c.vb_after.y));
   }
 

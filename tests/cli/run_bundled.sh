@@ -10,7 +10,7 @@ count=$(find "$scenes" -name '*.json' | wc -l)
 summaries=$(grep -c '^scene ' "$out/stdout")
 [[ $summaries -eq $count ]] || { echo "FAIL: $summaries summaries for $count scenes"; exit 1; }
 for f in "$out"/traces/*.jsonl; do
-  head -n1 "$f" | grep -q '"format":"pge-trace/1"' || { echo "FAIL: $f has no trace header"; exit 1; }
+  head -n1 "$f" | grep -q '"format":"pge-trace/2"' || { echo "FAIL: $f has no trace header"; exit 1; }
   tail -n1 "$f" | grep -q '"event":"end"' || { echo "FAIL: $f has no end record"; exit 1; }
 done
 traces=$(ls "$out"/traces/*.jsonl | wc -l)

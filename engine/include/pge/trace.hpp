@@ -50,6 +50,10 @@ struct TraceCollision {
   TraceState before_a, before_b;
   Vec2d va_after, vb_after;
   int line = 0;
+  // Optional: the features in contact, as PGE names them for (a, b) (event.hpp: "circle-edge",
+  // [0, 2]); "" when the trace does not name them (then features and gap are not judged).
+  std::string contact;
+  unsigned feature_a = 0, feature_b = 0;
 };
 
 // How the run ended: at `t`; `reached_until` when it ran to its horizon, so that a contact left

@@ -48,6 +48,7 @@
 #pragma once
 
 #include "pge/oracle.hpp"
+#include "pge/oracle_state.hpp"
 #include "pge/scene.hpp"
 #include "pge/trace.hpp"
 
@@ -118,6 +119,7 @@ struct EventVerdict {
   std::size_t index = 0;  // into Trace::collisions
   std::string a, b;       // scene ids, in scene order
   double t = 0;
+  ExactEvent event;  // the collision as the referee read it (body indices in scene order)
   Judgement judgement;
 };
 
@@ -127,6 +129,11 @@ struct EventJudgement {
   std::size_t counts[kVerdictCount] = {};  // per Verdict
   double largest_energy_change = 0;        // |change| / kinetic energy before, over elastic collisions
   double largest_momentum_change = 0;      // |change| / momentum scale, over two-moving-body collisions
+  // Kinetic + potential energy and momentum of the moving bodies at the scene's start and at the
+  // trace's end (its end record, else its last collision), on the motions the trace gave.
+  double energy_start = 0, energy_end = 0;
+  Vec2d momentum_start, momentum_end;
+  RefereeStats stats;
   bool failed() const {
     return counts[static_cast<int>(Verdict::Miss)] > 0 || counts[static_cast<int>(Verdict::Phantom)] > 0 ||
            (end && end->miss);

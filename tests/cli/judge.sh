@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# `pge judge` end to end (issue 28):
+#  - PGE's own traces (pge run --trace, events mode) get the verdicts pge check gives the same
+#    run, event by event (verdict and ulps): head-on (all agree: exit 0) and the fast solver's pool
+#    break (misorders and phantoms: exit 7; pge check shows fast there for contrast only, the
+#    scene's expect block being for robust and certified);
+#  - hand-made step traces of a bullet and a thin wall (tests/cli/judge/: the bullet meets the
+#    wall at t = (2 - 1/4 - 1/2) / 32 = 5/128 in the first step): passing through without a
+#    report is a miss (exit 7, one line on stderr naming the pass-through), a bounce reported in
+#    that step passes (exit 0); bad traces exit 12 with one line naming the line and the field.
+# Usage: judge.sh PGE EXPECT_ERROR SCENES_DIR HERE
+set -eu
+pge=$1; expect_error=$2; scenes=$3; here=$4
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+
+same_as_check() {  # scene solver max_events judge's_exit_code
+  local scene=$1 solver=$2 max=$3 code=$4 judge_code=0
+  "$pge" run "$scene" --solver "$solver" --max-events "$max" --trace "$dir/t.jsonl" -q
+  "$pge" judge "$dir/t.jsonl" --scene "$scene" --json "$dir/j.json" -q 2>/dev/null || judge_code=$?
+  "$pge" check "$scene" --solver "$solver" --max-events "$max" --json "$dir/c.json" -q 2>/dev/null || true
+  [[ $judge_code -eq $code ]] || { echo "FAIL: $scene $solver: judge exits $judge_code, expected $code"; exit 1; }
+  python3 - "$dir/j.json" "$dir/c.json" "$scene $solver" <<'PY'
+import json, sys
+judged = json.load(open(sys.argv[1]))["result"]["events"]
+checked = json.load(open(sys.argv[2]))["scenes"][0]["events"]
+key = lambda e: (e["index"], e["a"], e["b"], e["verdict"], e.get("ulps"))
+if [key(e) for e in judged] != [key(e) for e in checked]:
+    for j, c in zip(judged, checked):
+        if key(j) != key(c): print("first difference:", key(j), key(c)); break
+    sys.exit(f"FAIL: {sys.argv[3]}: {len(judged)} judged events differ from pge check's {len(checked)}")
+print(f"ok: {sys.argv[3]}: {len(judged)} events, verdicts as pge check's:",
+      sorted({e['verdict'] for e in judged}))
+PY
+}
+same_as_check "$scenes/basics/head-on.json" robust 100 0
+same_as_check "$scenes/simultaneous/pool-break.json" fast 300 7
+
+j=$here/judge
+"$expect_error" 7 "bullet-tunnels.jsonl" "\"bullet\"-\"wall\"" "exact t = 0.0390625" "pass-through" -- \
+  "$pge" judge "$j/bullet-tunnels.jsonl" --scene "$j/bullet-thin-wall.json" --quiet
+"$pge" judge "$j/bullet-bounces.jsonl" --scene "$j/bullet-thin-wall.json" | grep -q "on time 1, late 0" ||
+  { echo "FAIL: the reported bounce is not on time"; exit 1; }
+"$expect_error" 12 "bullet-bad-nan.jsonl:2:" "field \"bodies[0][2]\"" "NaN" -- \
+  "$pge" judge "$j/bullet-bad-nan.jsonl" --scene "$j/bullet-thin-wall.json"
+"$expect_error" 12 "bullet-bad-body.jsonl:2:" "field \"contacts[0][1]\"" "no body \"wal\"" -- \
+  "$pge" judge "$j/bullet-bad-body.jsonl" --scene "$j/bullet-thin-wall.json"
+"$expect_error" 12 "no-such.jsonl" "cannot open" -- "$pge" judge "$dir/no-such.jsonl" --scene "$j/bullet-thin-wall.json"
+"$expect_error" 3 "no-such.json" -- "$pge" judge "$j/bullet-bounces.jsonl" --scene "$dir/no-such.json"
+echo "ok: pge judge"

@@ -1,0 +1,456 @@
+// The referee for other engines' traces (pge/judge.hpp, issue 28).
+//
+// (a) PGE's own runs written as traces, in events and in steps mode, judged as `pge check`
+//     judges the same run (the oracle's Referee following the world);
+// (b) hand-made step traces whose verdicts are worked out by hand in the comments;
+// (c) bad traces: one error naming the line (or, in memory, the element) and the field.
+#include "pge/judge.hpp"
+#include "pge/oracle.hpp"
+#include "pge/scene_io.hpp"
+#include "pge/trace_io.hpp"
+#include "pge/world.hpp"
+#include "scene_bodies.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace pge {
+namespace {
+
+using oracle::StepVerdict;
+using test_scene::circle;
+using test_scene::wall;
+
+// --- (a) PGE's own runs ----------------------------------------------------------------------
+
+struct CheckedEvent {
+  BodyIndex a, b;
+  double t;
+  oracle::Verdict verdict;
+  long long ulps;
+};
+
+struct PgeRun {
+  std::vector<CheckedEvent> checked;  // what pge check's referee says of each collision
+  Trace events;                       // the same run as an events trace
+  Trace steps;                        // and as a steps trace, a step per frame
+};
+
+// Runs `scene` as pge check does (oracle::follow's referee judging every collision) and writes
+// the run as both kinds of trace: collisions with the pair's state before (its motion after the
+// collision starts where it was) and velocities after; frames as steps, each with the pairs
+// that collided since the frame before.
+PgeRun run_pge(const Scene& scene, SolverKind solver, double frames_per_second, std::uint64_t max_events) {
+  WorldOptions wo;
+  wo.solver = solver;
+  wo.frames_per_second = frames_per_second;
+  wo.max_events = max_events;
+  World<double> world(scene, wo);
+  PgeRun run;
+  run.events.mode = TraceMode::Events;
+  run.steps.mode = TraceMode::Steps;
+  for (BodyIndex i = 0; i < world.body_count(); ++i)
+    if (!world.is_fixed(i)) run.steps.bodies.push_back(scene.bodies[i].id);
+  oracle::Referee referee(oracle::exact_state(world));
+  std::vector<TraceContact> since_frame;
+  world.on_collision([&](const CollisionInfo<double>& c) {
+    const oracle::Judgement j = referee.judge(oracle::exact_event(c), oracle::exact_motion(world.motion(c.a)),
+                                              oracle::exact_motion(world.motion(c.b)));
+    run.checked.push_back({c.a, c.b, c.time, j.verdict, j.ulps});
+    TraceCollision t;
+    t.t = c.time;
+    t.a = scene.bodies[c.a].id;
+    t.b = scene.bodies[c.b].id;
+    t.before_a = {world.motion(c.a).p0, c.va_before};
+    t.before_b = {world.motion(c.b).p0, c.vb_before};
+    t.va_after = c.va_after;
+    t.vb_after = c.vb_after;
+    run.events.collisions.push_back(t);
+    since_frame.push_back({t.a, t.b});
+  });
+  world.on_motion_change([&](BodyIndex i, double time) {
+    ADD_FAILURE() << "the scenes of these tests have no resting contact; body " << i << " changed motion at " << time;
+  });
+  world.on_frame([&](const World<double>& w, double t) {
+    TraceStep s;
+    s.t = t;
+    for (BodyIndex i = 0; i < w.body_count(); ++i)
+      if (!w.is_fixed(i)) s.bodies.push_back({w.snapshot(i).position, w.snapshot(i).velocity});
+    s.contacts = std::move(since_frame);
+    since_frame.clear();
+    run.steps.steps.push_back(std::move(s));
+  });
+  while (world.step()) {
+  }
+  if (frames_per_second > 0) {
+    EXPECT_TRUE(since_frame.empty()) << "the run ends on a frame (until a multiple of the frame period)";
+  }
+  run.events.end = TraceEnd{world.time(), world.stop_reason() == StopReason::ReachedUntil};
+  return run;
+}
+
+Scene fixture(const std::string& name) { return read_scene_file(std::string(PGE_SCENES_DIR) + "/" + name).scene; }
+
+// Events mode: every collision gets pge check's verdict and time error, to the ulp.
+void expect_events_as_check(const Scene& scene, SolverKind solver, std::uint64_t max_events) {
+  const PgeRun run = run_pge(scene, solver, 0, max_events);
+  ASSERT_FALSE(run.checked.empty());
+  const oracle::EventJudgement j = oracle::judge_events(scene, run.events);
+  ASSERT_EQ(j.events.size(), run.checked.size());
+  for (std::size_t k = 0; k < j.events.size(); ++k) {
+    SCOPED_TRACE("collision " + std::to_string(k));
+    EXPECT_EQ(j.events[k].judgement.verdict, run.checked[k].verdict);
+    EXPECT_EQ(j.events[k].judgement.ulps, run.checked[k].ulps);
+  }
+}
+
+TEST(JudgePgeRuns, EventsTraceGetsCheckVerdicts) {
+  expect_events_as_check(fixture("basics/head-on.json"), SolverKind::Robust, 0);
+  expect_events_as_check(fixture("basics/box-bounce.json"), SolverKind::Robust, 200);
+  expect_events_as_check(fixture("games/snooker.json"), SolverKind::Robust, 200);
+}
+
+// The fast solver's run of the pool break has misorders and phantoms by pge check's referee: the
+// trace of it must get the very same ones, event by event.
+TEST(JudgePgeRuns, EventsTraceGetsCheckFailures) {
+  const Scene scene = fixture("simultaneous/pool-break.json");
+  const PgeRun run = run_pge(scene, SolverKind::Fast, 0, 300);
+  std::size_t failures = 0;
+  for (const CheckedEvent& e : run.checked) failures += oracle::is_failure(e.verdict) ? 1 : 0;
+  ASSERT_GT(failures, 0u) << "the scene no longer makes fast fail: choose another";
+  expect_events_as_check(scene, SolverKind::Fast, 300);
+  EXPECT_TRUE(oracle::judge_events(scene, run.events).failed());
+}
+
+// Steps mode: PGE agrees with the oracle on every collision (check: agree), so each collision
+// is a contact on time, in the step whose (previous frame, frame] holds its time, and there is
+// nothing else. The frame rate is high enough that no body collides twice in one step (the steps
+// model follows a body up to its first contact in a step): checked first.
+void expect_steps_as_check(Scene scene, double until, double frames_per_second) {
+  scene.run.until = until;
+  const PgeRun run = run_pge(scene, SolverKind::Robust, frames_per_second, 0);
+  for (const CheckedEvent& e : run.checked) ASSERT_EQ(e.verdict, oracle::Verdict::Agree) << "t = " << e.t;
+  std::map<std::pair<std::size_t, BodyIndex>, int> per_body;
+  for (std::size_t k = 0; k < run.steps.steps.size(); ++k)
+    for (const TraceContact& c : run.steps.steps[k].contacts)
+      for (const std::string& id : {c.a, c.b})
+        for (BodyIndex i = 0; i < scene.bodies.size(); ++i) {
+          if (scene.bodies[i].id != id || scene.bodies[i].fixed) continue;
+          ASSERT_LE(++per_body[std::make_pair(k, i)], 1) << "body " << id << " collides twice in step " << k << ": raise the frame rate";
+        }
+  const oracle::StepJudgement j = oracle::judge_steps(scene, run.steps);
+  EXPECT_EQ(j.summary.contacts, run.checked.size());
+  EXPECT_EQ(j.summary.on_time, run.checked.size());
+  EXPECT_EQ(j.summary.late + j.summary.missed + j.summary.phantom, 0u) << oracle::failure_text({TraceMode::Steps, j, {}});
+  EXPECT_EQ(j.summary.continuing_reports, 0u);
+  ASSERT_EQ(j.contacts.size(), run.checked.size());
+  for (std::size_t k = 0; k < j.contacts.size(); ++k) {
+    const oracle::StepContact& c = j.contacts[k];
+    const CheckedEvent& e = run.checked[k];
+    EXPECT_EQ(c.a, scene.bodies[e.a].id);
+    EXPECT_EQ(c.b, scene.bodies[e.b].id);
+    EXPECT_LT(run.steps.steps[c.step - 1].t, e.t);  // step 0 is the frame at t = 0, the start
+    EXPECT_LE(e.t, run.steps.steps[c.step].t);
+    // The step starts from the frame's state, PGE's positions rounded to double, not from its
+    // motion: the exact contact from there moves by that rounding over the closing speed, far
+    // below a relative 1e-12 for these scenes (coordinates of order 1 to 100, speeds of order 1).
+    ASSERT_TRUE(c.exact_time.has_value());
+    EXPECT_NEAR(*c.exact_time, e.t, 1e-12 * e.t);
+  }
+}
+
+TEST(JudgePgeRuns, StepsTraceGetsCheckVerdicts) {
+  expect_steps_as_check(fixture("basics/head-on.json"), 5, 10);
+  expect_steps_as_check(fixture("basics/box-bounce.json"), 20, 100);
+  expect_steps_as_check(fixture("games/breakout.json"), 2, 1000);
+  expect_steps_as_check(fixture("games/bagatelle.json"), 2, 1000);
+  expect_steps_as_check(fixture("basics/gravity-box.json"), 2, 1000);
+}
+
+// --- (b) hand-made step traces ----------------------------------------------------------------
+//
+// The scene: a ball of radius 1/2 and mass 1 at the origin, moving right at 8, and a fixed wall,
+// the segment x = 2 from y = -1 to 1; no gravity. Steps of 1/8 s. Every number is a dyadic
+// rational, so each state below is exact in doubles. On the closed-form path from a state
+// (x, v) the ball meets the wall when its centre reaches x = 2 - 1/2 = 3/2; from the start,
+// at t = (3/2) / 8 = 3/16 = 0.1875, which lies in the second step (1/8, 1/4].
+
+Scene wall_scene(double radius = 0.5, double speed = 8, double start_x = 0) {
+  Scene s;
+  s.name = "ball-and-wall";
+  s.bodies.push_back(circle("ball", radius, {start_x, 0}, {speed, 0}));
+  s.bodies.push_back(wall("wall", {2, -1}, {2, 1}));
+  s.run.until = 1;
+  return s;
+}
+
+Trace steps_trace(const std::vector<TraceStep>& steps) {
+  Trace t;
+  t.mode = TraceMode::Steps;
+  t.engine = "hand-made";
+  t.bodies = {"ball"};
+  t.steps = steps;
+  return t;
+}
+
+TraceStep step(double t, double x, double v, bool contact = false) {
+  TraceStep s;
+  s.t = t;
+  s.bodies = {{{x, 0}, {v, 0}}};
+  if (contact) s.contacts = {{"ball", "wall"}};
+  return s;
+}
+
+// A correct trace: step 0 ends at x = 1; in step 1 the engine bounces the ball off the wall
+// (reflected about x = 3/2: 2 - 1 = 1, velocity -8) and reports it; step 2 moves it to 0.
+// Verdict: one contact, in step 1, at exact t = 3/16, on time. Overlap: none at any step's end
+// (the nearest, x = 1, leaves a gap of 2 - 1 - 1/2 = 1/2). Energy 8^2 / 2 = 32 at every step:
+// drift 0. Momentum goes from 8 to -8 (the wall takes 16): drift |-16| / 8 = 2.
+TEST(JudgeSteps, CorrectTraceIsOnTime) {
+  const oracle::StepJudgement j =
+      oracle::judge_steps(wall_scene(), steps_trace({step(0.125, 1, 8), step(0.25, 1, -8, true), step(0.375, 0, -8)}));
+  ASSERT_EQ(j.contacts.size(), 1u);
+  const oracle::StepContact& c = j.contacts[0];
+  EXPECT_EQ(c.a, "ball");
+  EXPECT_EQ(c.b, "wall");
+  EXPECT_EQ(c.step, 1u);
+  EXPECT_EQ(c.verdict, StepVerdict::OnTime);
+  ASSERT_TRUE(c.exact_time.has_value());
+  EXPECT_EQ(*c.exact_time, 0.1875);
+  EXPECT_EQ(c.reported_step, std::optional<std::size_t>(1));
+  EXPECT_EQ(j.summary.on_time, 1u);
+  EXPECT_EQ(j.summary.late + j.summary.missed + j.summary.phantom, 0u);
+  EXPECT_FALSE(j.failed());
+  EXPECT_EQ(j.summary.largest_depth, 0.0);
+  EXPECT_EQ(j.summary.largest_energy_drift, 0.0);
+  EXPECT_EQ(j.summary.energy_start, 32.0);
+  EXPECT_EQ(j.summary.largest_momentum_drift, 2.0);
+  EXPECT_EQ(j.depth, (std::vector<double>{0, 0, 0}));
+}
+
+// Reported one step late: in step 1 the engine lets the ball move on to x = 13/8 = 1.625 without
+// a report (it overlaps the wall by 13/8 + 1/2 - 2 = 1/8, a quarter of its radius: below the
+// bound of a half), and reports the pair in step 2, pushing it out to x = 11/8 with velocity -8.
+// Verdict: the contact of step 1 (exact t = 3/16) is late by 1; step 2's report is that
+// contact's, not another. Depth: 1/8 at the end of step 1 (relative 1/4), none after (x = 11/8
+// leaves 2 - 11/8 - 1/2 = 1/8). Nothing fails: late is no miss.
+TEST(JudgeSteps, ContactReportedOneStepLate) {
+  const oracle::StepJudgement j = oracle::judge_steps(
+      wall_scene(), steps_trace({step(0.125, 1, 8), step(0.25, 1.625, 8), step(0.375, 1.375, -8, true), step(0.5, 0.375, -8)}));
+  ASSERT_EQ(j.contacts.size(), 1u);
+  const oracle::StepContact& c = j.contacts[0];
+  EXPECT_EQ(c.step, 1u);
+  EXPECT_EQ(c.verdict, StepVerdict::Late);
+  EXPECT_EQ(c.late_steps, 1u);
+  EXPECT_EQ(c.reported_step, std::optional<std::size_t>(2));
+  EXPECT_EQ(*c.exact_time, 0.1875);
+  EXPECT_EQ(c.depth, 0.125);
+  EXPECT_EQ(c.relative_depth, 0.25);
+  EXPECT_EQ(j.summary.late, 1u);
+  EXPECT_EQ(j.summary.largest_late_steps, 1u);
+  EXPECT_EQ(j.summary.on_time + j.summary.missed + j.summary.phantom, 0u);
+  EXPECT_EQ(j.depth, (std::vector<double>{0, 0.125, 0, 0}));
+  EXPECT_FALSE(j.failed());
+}
+
+// Two steps late, the ball stuck in the wall: x = 13/8 at the end of steps 1 and 2 (velocity 0
+// in step 2: the engine stopped it without a report), the report in step 3. Late by 2. The
+// energy falls from 32 to 0 at the end of step 2: drift -1, largest |drift| 1.
+TEST(JudgeSteps, ContactReportedTwoStepsLate) {
+  const oracle::StepJudgement j = oracle::judge_steps(
+      wall_scene(),
+      steps_trace({step(0.125, 1, 8), step(0.25, 1.625, 8), step(0.375, 1.625, 0), step(0.5, 1.375, -8, true)}));
+  ASSERT_EQ(j.contacts.size(), 1u);
+  EXPECT_EQ(j.contacts[0].verdict, StepVerdict::Late);
+  EXPECT_EQ(j.contacts[0].late_steps, 2u);
+  EXPECT_EQ(j.energy_drift, (std::vector<double>{0, 0, -1, 0}));
+  EXPECT_EQ(j.summary.largest_energy_drift, 1.0);
+}
+
+// Sunk past the bound: x = 15/8 at the end of step 1, unreported: the overlap is
+// 15/8 + 1/2 - 2 = 3/8, three quarters of the radius, past the bound of a half: missed
+// (overlap), whatever comes later; the report in step 2 is then of a pair already overlapping
+// at the step's start (a continuing report, no verdict).
+TEST(JudgeSteps, OverlapPastTheBoundIsMissed) {
+  const oracle::StepJudgement j = oracle::judge_steps(
+      wall_scene(), steps_trace({step(0.125, 1, 8), step(0.25, 1.875, 8), step(0.375, 1.375, -8, true)}));
+  ASSERT_EQ(j.contacts.size(), 1u);
+  EXPECT_EQ(j.contacts[0].verdict, StepVerdict::Missed);
+  EXPECT_EQ(j.contacts[0].miss, oracle::MissKind::Overlap);
+  EXPECT_EQ(j.contacts[0].relative_depth, 0.75);
+  EXPECT_EQ(j.summary.continuing_reports, 1u);
+  EXPECT_TRUE(j.failed());
+}
+
+// A bullet through a thin wall between two steps: radius 1/4 from x = 1/2 at speed 32, steps of
+// 1/16 s (2 units each). On the path from the start it meets the wall when its centre reaches
+// 2 - 1/4 = 7/4: at t = (7/4 - 1/2) / 32 = 5/128 = 0.0390625, inside step 0 (0, 1/16]. The
+// engine ends step 0 at x = 5/2, half a unit past the wall (distance 1/2 > 1/4: apart), and never
+// reports the pair. Verdict: missed, pass-through (tunnelling). Step 1 (to x = 9/2) moves away
+// from the wall: no contact. The trace fails.
+TEST(JudgeSteps, BulletThroughThinWallIsMissed) {
+  const oracle::TraceJudgement j =
+      oracle::judge_trace(wall_scene(0.25, 32, 0.5), steps_trace({step(0.0625, 2.5, 32), step(0.125, 4.5, 32)}));
+  ASSERT_EQ(j.steps.contacts.size(), 1u);
+  const oracle::StepContact& c = j.steps.contacts[0];
+  EXPECT_EQ(c.step, 0u);
+  EXPECT_EQ(*c.exact_time, 0.0390625);
+  EXPECT_EQ(c.verdict, StepVerdict::Missed);
+  EXPECT_EQ(c.miss, oracle::MissKind::PassThrough);
+  EXPECT_FALSE(c.reported_step.has_value());
+  EXPECT_EQ(j.steps.summary.missed, 1u);
+  EXPECT_EQ(j.steps.summary.tunnelled, 1u);
+  EXPECT_TRUE(j.failed());
+  EXPECT_NE(oracle::failure_text(j).find("pass-through"), std::string::npos) << oracle::failure_text(j);
+}
+
+// A phantom: the engine reports the pair in step 0, which ends at x = 1. On the path from the
+// start (x = 0, v = 8) the gap to the wall is 2 - x - 1/2 = 3/2 - 8t, from 3/2 down to 1/2 at
+// t = 1/8: positive through the whole step, and the exact contact (t = 3/16) is in step 1.
+// Verdicts: phantom in step 0; the bounce in step 1, reported there, on time.
+TEST(JudgeSteps, ReportWithPositiveGapIsPhantom) {
+  const oracle::StepJudgement j =
+      oracle::judge_steps(wall_scene(), steps_trace({step(0.125, 1, 8, true), step(0.25, 1, -8, true)}));
+  ASSERT_EQ(j.contacts.size(), 2u);
+  EXPECT_EQ(j.contacts[0].step, 0u);
+  EXPECT_EQ(j.contacts[0].verdict, StepVerdict::Phantom);
+  EXPECT_FALSE(j.contacts[0].exact_time.has_value());
+  EXPECT_EQ(j.contacts[1].step, 1u);
+  EXPECT_EQ(j.contacts[1].verdict, StepVerdict::OnTime);
+  EXPECT_EQ(j.summary.phantom, 1u);
+  EXPECT_EQ(j.summary.on_time, 1u);
+  EXPECT_TRUE(j.failed());
+}
+
+// The trace ends before the contact is reported: x = 13/8 at the end of step 1 (overlap 1/8,
+// within the bound), no more steps. Missed, never reported.
+TEST(JudgeSteps, UnreportedAtTheEndIsMissed) {
+  const oracle::StepJudgement j = oracle::judge_steps(wall_scene(), steps_trace({step(0.125, 1, 8), step(0.25, 1.625, 8)}));
+  ASSERT_EQ(j.contacts.size(), 1u);
+  EXPECT_EQ(j.contacts[0].verdict, StepVerdict::Missed);
+  EXPECT_EQ(j.contacts[0].miss, oracle::MissKind::Unreported);
+}
+
+// The closed-form path with gravity: a ball of radius 1/2 dropped from y = 1 onto the floor y = 0
+// under gravity -8. From a state (y, v) the path is y + v tau - 4 tau^2; the engine's state at
+// the end of step 0 (1/4 s) is on the exact path: y = 1 - 4/16 = 3/4, v = -2. From there the ball
+// meets the floor when 3/4 - 2 tau - 4 tau^2 = 1/2, tau = (sqrt(2) - 1) / 4, so at
+// t = 1/4 + tau = sqrt(2) / 4 (= sqrt(1/8), as from the start): inside step 1 (1/4, 1/2],
+// reported there: on time, at the double nearest sqrt(2) / 4, which is sqrt(2.0) / 4 (a
+// correctly rounded square root, divided by a power of two).
+TEST(JudgeSteps, ClosedFormPathUnderGravity) {
+  Scene s;
+  s.world.gravity = {0, -8};
+  s.bodies.push_back(circle("ball", 0.5, {0, 1}));
+  s.bodies.push_back(wall("floor", {-1, 0}, {1, 0}));
+  Trace t = steps_trace({});
+  TraceStep s0;
+  s0.t = 0.25;
+  s0.bodies = {{{0, 0.75}, {0, -2}}};
+  TraceStep s1;
+  s1.t = 0.5;
+  s1.bodies = {{{0, 0.75}, {0, 2}}};
+  s1.contacts = {{"floor", "ball"}};
+  t.steps = {s0, s1};
+  const oracle::StepJudgement j = oracle::judge_steps(s, t);
+  ASSERT_EQ(j.contacts.size(), 1u);
+  EXPECT_EQ(j.contacts[0].a, "ball");  // scene order, whatever order the report names them in
+  EXPECT_EQ(j.contacts[0].step, 1u);
+  EXPECT_EQ(j.contacts[0].verdict, StepVerdict::OnTime);
+  EXPECT_EQ(*j.contacts[0].exact_time, std::sqrt(2.0) / 4);
+}
+
+// A trace written and read back is the same trace.
+TEST(JudgeTraceIo, WriteThenReadGivesTheTraceBack) {
+  Trace t = steps_trace({step(0.125, 1, 8), step(0.25, -0.0, -8, true)});
+  std::stringstream io;
+  write_trace(io, t);
+  const Trace back = read_trace(io, "memory");
+  EXPECT_EQ(back.mode, TraceMode::Steps);
+  EXPECT_EQ(back.engine, "hand-made");
+  EXPECT_EQ(back.bodies, t.bodies);
+  ASSERT_EQ(back.steps.size(), 2u);
+  EXPECT_EQ(back.steps[1].t, 0.25);
+  EXPECT_TRUE(std::signbit(back.steps[1].bodies[0].position.x));
+  EXPECT_EQ(back.steps[1].bodies[0].velocity.x, -8);
+  ASSERT_EQ(back.steps[1].contacts.size(), 1u);
+  EXPECT_EQ(back.steps[1].contacts[0].b, "wall");
+  EXPECT_EQ(back.steps[1].line, 3);
+}
+
+// --- (c) bad traces ---------------------------------------------------------------------------
+
+// The TraceError `text` raises when read, or when judged against the wall scene.
+std::string error_of(const std::string& text) {
+  try {
+    std::istringstream in(text);
+    oracle::judge_trace(wall_scene(), read_trace(in, "t.jsonl"));
+  } catch (const TraceError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+const std::string kStepsHeader = R"({"format":"pge-trace/2","mode":"steps","bodies":["ball"]})"
+                                 "\n";
+
+TEST(JudgeBadTraces, OneLineNamingLineAndField) {
+  EXPECT_EQ(error_of(kStepsHeader + R"({"event":"step","t":NaN,"bodies":[[0,0,8,0]]})"),
+            "t.jsonl:2: field \"t\": NaN is not a JSON number; NaN and infinities are not allowed");
+  EXPECT_EQ(error_of(kStepsHeader + R"({"event":"step","t":0.25,"bodies":[[0,0,8,0]]})"
+                                    "\n"
+                                    R"({"event":"step","t":0.125,"bodies":[[0,0,8,0]]})"),
+            "t.jsonl:3: field \"t\": 0.125 is before the time of line 2 (0.25): times must increase from step to step");
+  EXPECT_EQ(error_of(kStepsHeader + R"({"event":"step","t":0.25,"bodies":[[0,0,8,0]],"contacts":[["ball","wal"]]})"),
+            "t.jsonl:2: field \"contacts[0][1]\": no body \"wal\" in the scene");
+  EXPECT_EQ(error_of(kStepsHeader + R"({"event":"step","t":0.25,"bodies":[[0,0,1e400,0]]})"),
+            "t.jsonl:2: field \"bodies[0][2]\": number 1e400 is out of range for a double (it would overflow to infinity)");
+  EXPECT_EQ(error_of(kStepsHeader + R"({"event":"step","t":0.25,"bodies":[[0,0,8]]})"),
+            "t.jsonl:2: field \"bodies[0]\": must be a state [x, y, vx, vy] of 4 numbers, got [0,0,8]");
+  EXPECT_EQ(error_of(kStepsHeader + R"({"event":"step","t":0.25,"bodies":[[0,0,8,0]],"colour":1})"),
+            "t.jsonl:2: field \"colour\": unknown key");
+  EXPECT_EQ(error_of(R"({"format":"pge-trace/2","mode":"steps","bodies":["ball","wall"]})"),
+            "t.jsonl:1: field \"bodies[1]\": body \"wall\" is fixed: a steps trace gives the states of moving bodies only");
+  EXPECT_EQ(error_of(R"({"format":"pge-trace/2","mode":"steps","bodies":[]})"),
+            "t.jsonl:1: field \"bodies\": moving body \"ball\" of the scene is missing: a steps trace gives every moving "
+            "body's state");
+  EXPECT_EQ(error_of(R"({"format":"pge-trace/2","mode":"frames","bodies":[]})"),
+            "t.jsonl:1: field \"mode\": must be \"events\" or \"steps\", got \"frames\"");
+  // The state at t = 0 is the scene's start (the ball is at the origin, moving at 8).
+  EXPECT_EQ(error_of(kStepsHeader + R"({"event":"step","t":0,"bodies":[[0,0,7,0]]})"),
+            "t.jsonl:2: field \"bodies[0][2]\": the state at t = 0 is the scene's: body \"ball\" has velocity 8 there, the "
+            "trace 7");
+  // Events: the ball cannot be at x = 1 at t = 1/8, when its path from the start puts it at 1.
+  EXPECT_EQ(error_of(R"({"format":"pge-trace/2","mode":"events"})"
+                     "\n"
+                     R"({"event":"collision","t":0.125,"a":"ball","b":"wall","before":[[1.5,0,8,0],[0,0,0,0]],"va":[-8,0],"vb":[0,0]})"),
+            "t.jsonl:2: field \"before[0][0]\": body \"ball\" is not where the scene and the trace's earlier collisions "
+            "put it: 1 on its path, 1.5 in the trace");
+  EXPECT_NE(error_of(R"({"format":"pge-trace/1","scene":"x"})").find("pge-trace/1 (before issue 28)"), std::string::npos);
+}
+
+// A trace made in memory has no lines: errors name the element.
+TEST(JudgeBadTraces, InMemoryErrorsNameTheElement) {
+  Trace t = steps_trace({step(0.125, 1, 8), step(0.125, 1, 8)});
+  try {
+    oracle::judge_steps(wall_scene(), t);
+    FAIL() << "no error";
+  } catch (const TraceError& e) {
+    EXPECT_STREQ(e.what(), "trace: field \"steps[1].t\": 0.125 is not after the previous step's end 0.125: step times increase");
+  }
+  t = steps_trace({step(0.125, std::nan(""), 8)});
+  try {
+    oracle::judge_steps(wall_scene(), t);
+    FAIL() << "no error";
+  } catch (const TraceError& e) {
+    EXPECT_STREQ(e.what(), "trace: field \"steps[0].bodies[0][0]\": nan is not a finite number");
+  }
+}
+
+}  // namespace
+}  // namespace pge
