@@ -120,11 +120,11 @@ TEST(GateMyEngine, CoarseStepsTunnelAndTheGateSaysSo) {
   EXPECT_EQ(c.verdict, pge::oracle::StepVerdict::Missed);
   EXPECT_EQ(c.miss, pge::oracle::MissKind::PassThrough);
   EXPECT_FALSE(c.reported_step.has_value());
-  // The message names the pair and says what went wrong.
+  // The message is one line, the missed contact's: the pair, the step, the exact time and why.
   const std::string message = gate.message();
-  EXPECT_NE(message.find("wall"), std::string::npos) << message;
-  EXPECT_NE(message.find("bullet"), std::string::npos) << message;
-  EXPECT_NE(message.find("tunnelling"), std::string::npos) << message;
+  EXPECT_EQ(message, pge::oracle::contact_text(c));
+  EXPECT_NE(message.find("\"wall\"-\"bullet\" in step 2"), std::string::npos) << message;
+  EXPECT_NE(message.find("missed (pass-through: tunnelling"), std::string::npos) << message;
   std::cout << "the gate's message at 60 Hz:\n" << message << "\n";
 }
 
