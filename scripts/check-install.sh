@@ -45,7 +45,8 @@ step() { echo "-- check-install: $* (${SECONDS}s)"; }
 
 step "installing into $prefix"
 cmake --install "$build" --prefix "$prefix" >"$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
-for f in bin/pge include/pge/world.hpp include/pge/oracle.hpp include/pge/scene_io.hpp; do
+for f in bin/pge include/pge/world.hpp include/pge/oracle.hpp include/pge/judge.hpp include/pge/scene_io.hpp \
+         include/pge/trace_io.hpp lib/cmake/pge/pgeConfig.cmake; do
   [[ -e "$prefix/$f" ]] || fail "$f is not installed"
 done
 "$prefix/bin/pge" --help >/dev/null || fail "the installed pge --help"
@@ -82,14 +83,18 @@ if [[ $deb -eq 1 ]]; then
   runtime=("$work"/deb/pge_*.deb)
   dev=("$work"/deb/libpge-dev_*.deb)
   [[ ${#runtime[@]} -eq 1 && ${#dev[@]} -eq 1 ]] || { ls "$work/deb"; fail "expected pge_*.deb and libpge-dev_*.deb"; }
-  dpkg-deb -c "${runtime[0]}" | grep -q ' ./usr/bin/pge$' || fail "pge_*.deb holds no usr/bin/pge"
-  dpkg-deb -f "${runtime[0]}" Depends | grep -q 'libgmp' || fail "pge_*.deb does not depend on GMP"
-  for f in include/pge/world.hpp include/pge/oracle.hpp include/pge/scene_io.hpp lib/libpge_oracle.a \
+  # Listings first, then grep: grep -q ending a pipe early would fail it under pipefail.
+  runtime_files=$(dpkg-deb -c "${runtime[0]}")
+  dev_files=$(dpkg-deb -c "${dev[0]}")
+  dev_depends=$(dpkg-deb -f "${dev[0]}" Depends)
+  grep -q ' \./usr/bin/pge$' <<<"$runtime_files" || fail "pge_*.deb holds no usr/bin/pge"
+  grep -q 'libgmp' <<<"$(dpkg-deb -f "${runtime[0]}" Depends)" || fail "pge_*.deb does not depend on GMP"
+  for f in include/pge/world.hpp include/pge/judge.hpp include/pge/trace_io.hpp lib/libpge_oracle.a \
            lib/cmake/pge/pgeConfig.cmake lib/cmake/pge/pgeConfigVersion.cmake; do
-    dpkg-deb -c "${dev[0]}" | grep -q " ./usr/$f\$" || fail "libpge-dev_*.deb holds no usr/$f"
+    grep -q " \./usr/$f\$" <<<"$dev_files" || fail "libpge-dev_*.deb holds no usr/$f"
   done
   for p in libcgal-dev libgmp-dev libboost-dev libfmt-dev nlohmann-json3-dev; do
-    dpkg-deb -f "${dev[0]}" Depends | grep -q "$p" || fail "libpge-dev_*.deb does not depend on $p"
+    grep -q "$p" <<<"$dev_depends" || fail "libpge-dev_*.deb does not depend on $p"
   done
   dpkg-deb -f "${runtime[0]}" Package Version Depends Recommends
   dpkg-deb -f "${dev[0]}" Package Version Depends
