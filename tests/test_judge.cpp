@@ -365,6 +365,35 @@ TEST(JudgeSteps, ClosedFormPathUnderGravity) {
   EXPECT_EQ(*j.contacts[0].exact_time, std::sqrt(2.0) / 4);
 }
 
+// The usage of pge/judge.hpp's comment, with a naive stepping engine: explicit Euler at 16 Hz,
+// a contact reported (and the ball reflected) when it overlaps the wall at a step's end. On the
+// bullet scene (radius 1/4 from x = 1/2 at 32; the wall x = 2) one step moves the ball 2 units,
+// from 1/2 to 5/2, past the wall without ever overlapping it at a step's end: by hand, as in
+// BulletThroughThinWallIsMissed, the exact contact at t = 5/128 is missed by passing through.
+TEST(JudgeSteps, NaiveSteppingEngineTunnels) {
+  const Scene scene = wall_scene(0.25, 32, 0.5);
+  Trace trace;
+  trace.mode = TraceMode::Steps;
+  trace.engine = "naive Euler, 16 Hz";
+  trace.bodies = {"ball"};
+  Vec2d position = scene.bodies[0].position, velocity = scene.bodies[0].velocity;
+  const double dt = 0.0625;
+  for (int k = 1; k <= 2; ++k) {
+    position = position + velocity * dt;
+    std::vector<TraceContact> reported;
+    if (std::abs(position.x - 2) < 0.25) {
+      velocity.x = -velocity.x;
+      reported.push_back({"ball", "wall"});
+    }
+    trace.steps.push_back({k * dt, {{position, velocity}}, reported});
+  }
+  const oracle::TraceJudgement j = oracle::judge_trace(scene, trace);
+  EXPECT_TRUE(j.failed());
+  EXPECT_EQ(j.steps.summary.missed, 1u);
+  EXPECT_EQ(oracle::failure_text(j),
+            "contact \"ball\"-\"wall\" in step 0 (exact t = 0.0390625): missed (pass-through: tunnelling, never reported)");
+}
+
 // A trace written and read back is the same trace.
 TEST(JudgeTraceIo, WriteThenReadGivesTheTraceBack) {
   Trace t = steps_trace({step(0.125, 1, 8), step(0.25, -0.0, -8, true)});
