@@ -13,8 +13,6 @@
 # Environment: PGE_JOBS parallel build jobs for the example (default: number of cores).
 # Exit code: 0 when every check passes, 1 when one fails, 2 on a bad command line.
 set -euo pipefail
-cd "$(dirname "$0")/.."
-source_dir=$PWD
 deb=0
 keep=0
 build=
@@ -22,7 +20,7 @@ for arg in "$@"; do
   case "$arg" in
     --deb) deb=1 ;;
     --keep) keep=1 ;;
-    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "check-install: unknown option $arg" >&2; exit 2 ;;
     *) build=$arg ;;
   esac
@@ -31,7 +29,8 @@ if [[ -z "$build" || ! -f "$build/CMakeCache.txt" ]]; then
   echo "check-install: give a configured and built build folder (got '${build}')" >&2
   exit 2
 fi
-build=$(cd "$build" && pwd)
+build=$(cd "$build" && pwd)  # before the cd below: BUILD_DIR may be relative to the caller's folder
+cd "$(dirname "$0")/.."
 jobs=${PGE_JOBS:-$(nproc)}
 work=$(mktemp -d "${TMPDIR:-/tmp}/pge-check-install.XXXXXX")
 if [[ $keep -eq 1 ]]; then
