@@ -460,6 +460,17 @@ TEST(JudgeBadTraces, OneLineNamingLineAndField) {
                      R"({"event":"collision","t":0.125,"a":"ball","b":"wall","before":[[1.5,0,8,0],[0,0,0,0]],"va":[-8,0],"vb":[0,0]})"),
             "t.jsonl:2: field \"before[0][0]\": body \"ball\" is not where the scene and the trace's earlier collisions "
             "put it: 1 on its path, 1.5 in the trace");
+  EXPECT_EQ(error_of(R"({"format":"pge-trace/2","mode":"events"})"
+                     "\n"
+                     R"({"event":"collision","t":0.1875,"a":"ball","b":"wall","before":[[1.5,0,8,0],[0,0,0,0]],"va":[-8,0],"vb":[1,0]})"),
+            "t.jsonl:2: field \"vb\": body \"wall\" is fixed: it stays at rest");
+  EXPECT_EQ(error_of(R"({"format":"pge-trace/2","mode":"events"})"
+                     "\n"
+                     R"({"event":"collision","t":0.1875,"a":"ball","b":"ball","before":[[1.5,0,8,0],[1.5,0,8,0]],"va":[-8,0],"vb":[1,0]})"),
+            "t.jsonl:2: field \"b\": a body cannot collide with itself");
+  EXPECT_EQ(error_of(R"({"format":"pge-trace/2","mode":"events","bodies":["wall","ball"]})"),
+            "t.jsonl:1: field \"bodies[0]\": an events trace lists every body of the scene in scene order (2 bodies: \"ball\" "
+            "first), or none");
   EXPECT_NE(error_of(R"({"format":"pge-trace/1","scene":"x"})").find("pge-trace/1 (before issue 28)"), std::string::npos);
 }
 

@@ -175,7 +175,7 @@ class StepReferee {
                                  model_.ids[i]));
   }
 
-  // A step at t = 0 is the start state: the scene's, bit for bit, and no contacts.
+  // A step at t = 0 is the start state: exactly the scene's, and no contacts.
   void check_start() {
     const TraceStep& s0 = trace_.steps[0];
     const std::string element = "steps[0]";

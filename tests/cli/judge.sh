@@ -39,6 +39,20 @@ same_as_check "$scenes/simultaneous/pool-break.json" fast 300 7
 j=$here/judge
 "$expect_error" 7 "bullet-tunnels.jsonl" "\"bullet\"-\"wall\"" "exact t = 0.0390625" "pass-through" -- \
   "$pge" judge "$j/bullet-tunnels.jsonl" --scene "$j/bullet-thin-wall.json" --quiet
+"$pge" judge "$j/bullet-tunnels.jsonl" --scene "$j/bullet-thin-wall.json" --json "$dir/tunnels.json" -q 2>/dev/null || true
+python3 - "$dir/tunnels.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["format"] == "pge-judge/1" and r["mode"] == "steps", r
+c = r["result"]["contacts"]
+want = [{"a": "bullet", "b": "wall", "step": 1, "t_step": 0.0625, "verdict": "missed", "exact_time": 0.0390625,
+         "off_path": False, "reported_step": None, "miss": "pass_through", "depth": 0.0, "relative_depth": 0.0}]
+assert c == want, c
+s = r["result"]["summary"]
+assert (s["contacts"], s["missed"], s["tunnelled"], s["failed"]) == (1, 1, 1, True), s
+assert [x["t"] for x in r["result"]["steps"]] == [0, 0.0625, 0.125], r["result"]["steps"]
+print("ok: the tunnelling trace's JSON")
+PY
 "$pge" judge "$j/bullet-bounces.jsonl" --scene "$j/bullet-thin-wall.json" | grep -q "on time 1, late 0" ||
   { echo "FAIL: the reported bounce is not on time"; exit 1; }
 "$expect_error" 12 "bullet-bad-nan.jsonl:2:" "field \"bodies[0][2]\"" "NaN" -- \
