@@ -18,10 +18,8 @@ install(TARGETS pge_engine pge_oracle pge_io EXPORT pgeTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT pgeTargets NAMESPACE pge:: DESTINATION ${PGE_CMAKE_DIR} COMPONENT development)
 
-# The minimum versions the top-level CMakeLists.txt asks for, asked again of a consumer.
-set(PGE_BOOST_MIN 1.74)
-set(PGE_NLOHMANN_JSON_MIN 3.10)
-set(PGE_CGAL_MIN 5.0)
+# pgeConfig.cmake asks a consumer for the minimum versions the top-level CMakeLists.txt asks for
+# (PGE_BOOST_MIN, PGE_NLOHMANN_JSON_MIN, PGE_CGAL_MIN).
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/pgeConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/pgeConfig.cmake INSTALL_DESTINATION ${PGE_CMAKE_DIR})
 # 0.x: a minor version may break the interface.
@@ -32,7 +30,8 @@ install(FILES ${PROJECT_BINARY_DIR}/pgeConfig.cmake ${PROJECT_BINARY_DIR}/pgeCon
 
 install(TARGETS pge RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 
-# CPack: `cpack -G DEB` in the build folder (or scripts/package-deb.sh) writes both packages.
+# CPack: `cpack -G DEB` in the build folder writes both packages (scripts/check-install.sh --deb
+# checks them).
 set(CPACK_PACKAGE_NAME pge)
 set(CPACK_PACKAGE_VENDOR "PGE")
 set(CPACK_PACKAGE_CONTACT "PGE maintainers <pge@localhost>")
@@ -54,7 +53,7 @@ set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME libpge-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
 # Static libraries: a consumer compiles against these headers and links these libraries.
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS
-    "libboost-dev (>= 1.74), libgmp-dev, libmpfr-dev, libcgal-dev (>= 5.0), libfmt-dev, nlohmann-json3-dev (>= 3.10)")
+    "libboost-dev (>= ${PGE_BOOST_MIN}), libgmp-dev, libmpfr-dev, libcgal-dev (>= ${PGE_CGAL_MIN}), libfmt-dev, nlohmann-json3-dev (>= ${PGE_NLOHMANN_JSON_MIN})")
 set(CPACK_DEBIAN_DEVELOPMENT_DESCRIPTION
     "event-driven 2D physics engine: headers, static libraries and CMake package\n pge::engine, pge::oracle (the exact referee) and pge::io (scene files) for find_package(pge).")
 include(CPack)
