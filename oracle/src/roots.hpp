@@ -3,15 +3,13 @@
 #pragma once
 
 #include "pge/oracle_exact.hpp"
+#include "root_enclosure.hpp"
 
 #include <memory>
 #include <utility>
 #include <vector>
 
 namespace pge::oracle::detail {
-
-// c[0] + c[1] x + c[2] x^2 + ..., no leading zero; empty is the zero polynomial.
-using IntPoly = std::vector<mpz_class>;
 
 // An algebraic real number (a root of an integer polynomial with an isolating interval that
 // refines on demand). Opaque: defined in roots_cgal.cpp.
