@@ -184,6 +184,30 @@ void RootEnclosure::narrow(long bits) {
   }
 }
 
+void RootEnclosure::newton_from(const Dyadic& x, long bits) {
+  if (point_ || bits < 1) return;
+  const Scaled f = evaluate_scaled(p_, x);
+  if (f.value == 0) {
+    if (lo_ < x && x < hi_) *this = point(x);  // else x is a root of p other than this one
+    return;
+  }
+  const Scaled d = evaluate_scaled(dp_, x);
+  if (d.value == 0) return;
+  // step = f / d with bits + 8 significant bits: q = floor(f 2^k / d), step = q 2^(ef - ed - k).
+  const long k = bits + 8 + bit_length(d.value) - bit_length(f.value);
+  mpz_class num = f.value, den = d.value;
+  if (k >= 0) num <<= static_cast<mp_bitcnt_t>(k);
+  else den <<= static_cast<mp_bitcnt_t>(-k);
+  mpz_class q;
+  mpz_tdiv_q(q.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+  if (q == 0) return;
+  const Dyadic step(q, f.exponent - d.exponent - k);
+  const Dyadic y = x - step;
+  const Dyadic delta = power_of_two(log2_floor(step) + 1 - bits);
+  probe(y - delta);
+  probe(y + delta);
+}
+
 std::optional<int> RootEnclosure::sign_of(const IntPoly& q) {
   if (q.empty()) return 0;
   for (int round = 0;; ++round) {

@@ -31,6 +31,9 @@ int compare(const RealRoot& a, const mpq_class& x);
 RootHandle root_at(const Dyadic& x);  // x itself, as an algebraic real
 // Rationals lo <= r <= hi with hi - lo <= 2^-bits (refines r in place).
 std::pair<mpq_class, mpq_class> bracket(const RealRoot& r, long bits);
+// A hint, never a change of value: narrows r's enclosure to about 2^-bits of |x - r| by one
+// Newton step from x, a point near r (see RootEnclosure::newton_from).
+void refine_near(const RealRoot& r, const Dyadic& x, long bits);
 // Whether r is known to be rational with the value `value` (a root made by root_at, or a
 // root whose isolating interval collapsed to a point).
 bool rational_value(const RealRoot& r, mpq_class& value);

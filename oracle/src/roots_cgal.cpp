@@ -162,6 +162,10 @@ std::pair<mpq_class, mpq_class> bracket(const RealRoot& r, long bits) {
   return {to_mpq(lo), to_mpq(hi)};
 }
 
+void refine_near(const RealRoot& r, const Dyadic& x, long bits) {
+  if (RootEnclosure* e = r.enclosure()) e->newton_from(x, bits);
+}
+
 bool rational_value(const RealRoot& r, mpq_class& value) {
   if (RootEnclosure* e = r.enclosure(); e && e->is_point()) {
     value = e->lo().to_mpq();
