@@ -184,28 +184,37 @@ void RootEnclosure::narrow(long bits) {
   }
 }
 
-void RootEnclosure::newton_from(const Dyadic& x, long bits) {
+void RootEnclosure::newton_from(const Dyadic& x0, long bits) {
   if (point_ || bits < 1) return;
-  const Scaled f = evaluate_scaled(p_, x);
-  if (f.value == 0) {
-    if (lo_ < x && x < hi_) *this = point(x);  // else x is a root of p other than this one
-    return;
+  // Newton steps from x0 with quotients good to bits + 8 bits, until a step is below 2^-(bits +
+  // 2) of the first: the error left is then about the square of that step over the root's
+  // scale, far below the probes' distance 2^-bits of the first step (|x0 - root|).
+  constexpr int kMaxSteps = 4;
+  Dyadic x = x0;
+  long first = 0;  // floor(log2) of the first step
+  for (int k = 0; k < kMaxSteps; ++k) {
+    const Scaled f = evaluate_scaled(p_, x);
+    if (f.value == 0) {
+      if (lo_ < x && x < hi_) *this = point(x);  // else x is another root of p: no hint
+      return;
+    }
+    const Scaled d = evaluate_scaled(dp_, x);
+    if (d.value == 0) return;
+    // step = f / d to bits + 8 significant bits: q = floor(f 2^s / d), step = q 2^(ef - ed - s).
+    const long shift = bits + 8 + bit_length(d.value) - bit_length(f.value);
+    mpz_class num = f.value, den = d.value, q;
+    if (shift >= 0) num <<= static_cast<mp_bitcnt_t>(shift);
+    else den <<= static_cast<mp_bitcnt_t>(-shift);
+    mpz_tdiv_q(q.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+    if (q == 0) break;
+    const Dyadic step(q, f.exponent - d.exponent - shift);
+    x = x - step;
+    if (k == 0) first = log2_floor(step);
+    else if (log2_floor(step) < first - bits - 2) break;
   }
-  const Scaled d = evaluate_scaled(dp_, x);
-  if (d.value == 0) return;
-  // step = f / d with bits + 8 significant bits: q = floor(f 2^k / d), step = q 2^(ef - ed - k).
-  const long k = bits + 8 + bit_length(d.value) - bit_length(f.value);
-  mpz_class num = f.value, den = d.value;
-  if (k >= 0) num <<= static_cast<mp_bitcnt_t>(k);
-  else den <<= static_cast<mp_bitcnt_t>(-k);
-  mpz_class q;
-  mpz_tdiv_q(q.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
-  if (q == 0) return;
-  const Dyadic step(q, f.exponent - d.exponent - k);
-  const Dyadic y = x - step;
-  const Dyadic delta = power_of_two(log2_floor(step) + 1 - bits);
-  probe(y - delta);
-  probe(y + delta);
+  const Dyadic delta = power_of_two(first + 1 - bits);
+  probe(x - delta);
+  probe(x + delta);
 }
 
 std::optional<int> RootEnclosure::sign_of(const IntPoly& q) {
