@@ -143,7 +143,9 @@ int main(int argc, char** argv) {
           ->type_name("FILE");
   check_solver->excludes(check_all)->excludes(check_table)->excludes(check_table_out);
   check_cmd->add_option("--json", check.json, "Write the summaries and every event's verdict to FILE (JSON)");
-  check_cmd->add_flag("--no-filter", check.no_filter, "Solve every pair exactly, without the interval filter (slow; same verdicts)");
+  check_cmd->add_flag("--no-filter", check.no_filter,
+                     "Turn off the oracle's pair filters (its spatial filter and the interval test of each feature "
+                     "pair): every pair of bodies is solved exactly at every event (slow: O(N^2) per event; same verdicts)");
   check_cmd->add_flag("--quiet,-q", check.quiet, "Print no summary (errors and failed expectations still go to stderr)");
   check_cmd->add_flag("--progress", check.progress, "Show progress on stderr (default: only when stderr is a terminal)");
 

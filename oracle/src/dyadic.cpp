@@ -40,17 +40,46 @@ Dyadic Dyadic::operator-() const {
   return r;
 }
 
+namespace {
+
+// a + sign * b, exactly: the operand with the larger exponent is shifted onto the other's grid
+// in place of the result (one allocation, not a copy and a shift of each).
+void add_into(mpz_class& r, long& e, const Dyadic& a, const Dyadic& b, int sign) {
+  if (a.exponent() >= b.exponent()) {
+    mpz_mul_2exp(r.get_mpz_t(), a.mantissa().get_mpz_t(), static_cast<mp_bitcnt_t>(a.exponent() - b.exponent()));
+    (sign > 0 ? mpz_add : mpz_sub)(r.get_mpz_t(), r.get_mpz_t(), b.mantissa().get_mpz_t());
+    e = b.exponent();
+  } else {
+    mpz_mul_2exp(r.get_mpz_t(), b.mantissa().get_mpz_t(), static_cast<mp_bitcnt_t>(b.exponent() - a.exponent()));
+    if (sign < 0) mpz_neg(r.get_mpz_t(), r.get_mpz_t());
+    mpz_add(r.get_mpz_t(), r.get_mpz_t(), a.mantissa().get_mpz_t());
+    e = a.exponent();
+  }
+}
+
+long top_bit(const Dyadic& x) {  // floor(log2 |x|), x != 0
+  return static_cast<long>(mpz_sizeinbase(x.mantissa().get_mpz_t(), 2)) - 1 + x.exponent();
+}
+
+}  // namespace
+
 Dyadic operator+(const Dyadic& a, const Dyadic& b) {
   if (a.is_zero()) return b;
   if (b.is_zero()) return a;
-  const long e = std::min(a.e_, b.e_);
-  mpz_class ma = a.m_, mb = b.m_;
-  ma <<= static_cast<mp_bitcnt_t>(a.e_ - e);
-  mb <<= static_cast<mp_bitcnt_t>(b.e_ - e);
-  return Dyadic(ma + mb, e);
+  Dyadic r;
+  add_into(r.m_, r.e_, a, b, 1);
+  r.normalize();
+  return r;
 }
 
-Dyadic operator-(const Dyadic& a, const Dyadic& b) { return a + (-b); }
+Dyadic operator-(const Dyadic& a, const Dyadic& b) {
+  if (b.is_zero()) return a;
+  if (a.is_zero()) return -b;
+  Dyadic r;
+  add_into(r.m_, r.e_, a, b, -1);
+  r.normalize();
+  return r;
+}
 
 Dyadic operator*(const Dyadic& a, const Dyadic& b) {
   if (a.is_zero() || b.is_zero()) return {};
@@ -64,6 +93,10 @@ int compare(const Dyadic& a, const Dyadic& b) {
   const int sa = a.sign(), sb = b.sign();
   if (sa != sb) return sa < sb ? -1 : 1;
   if (sa == 0) return 0;
+  // Same sign: magnitudes in different binades are ordered by the binade alone.
+  const long ta = top_bit(a), tb = top_bit(b);
+  if (ta != tb) return (ta > tb ? 1 : -1) * sa;
+  if (a.e_ == b.e_) return cmp(a.m_, b.m_) < 0 ? -1 : (a.m_ == b.m_ ? 0 : 1);
   return (a - b).sign();
 }
 

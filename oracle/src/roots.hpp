@@ -3,15 +3,13 @@
 #pragma once
 
 #include "pge/oracle_exact.hpp"
+#include "root_enclosure.hpp"
 
 #include <memory>
 #include <utility>
 #include <vector>
 
 namespace pge::oracle::detail {
-
-// c[0] + c[1] x + c[2] x^2 + ..., no leading zero; empty is the zero polynomial.
-using IntPoly = std::vector<mpz_class>;
 
 // An algebraic real number (a root of an integer polynomial with an isolating interval that
 // refines on demand). Opaque: defined in roots_cgal.cpp.
@@ -33,6 +31,9 @@ int compare(const RealRoot& a, const mpq_class& x);
 RootHandle root_at(const Dyadic& x);  // x itself, as an algebraic real
 // Rationals lo <= r <= hi with hi - lo <= 2^-bits (refines r in place).
 std::pair<mpq_class, mpq_class> bracket(const RealRoot& r, long bits);
+// A hint, never a change of value: narrows r's enclosure to about 2^-bits of |x - r| by one
+// Newton step from x, a point near r (see RootEnclosure::newton_from).
+void refine_near(const RealRoot& r, const Dyadic& x, long bits);
 // Whether r is known to be rational with the value `value` (a root made by root_at, or a
 // root whose isolating interval collapsed to a point).
 bool rational_value(const RealRoot& r, mpq_class& value);

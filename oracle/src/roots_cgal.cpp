@@ -13,6 +13,7 @@
 #include <CGAL/Gmpz.h>
 
 #include <iterator>
+#include <optional>
 
 namespace pge::oracle::detail {
 
@@ -21,10 +22,23 @@ using Polynomial = Kernel::Polynomial_1;
 using Algebraic = Kernel::Algebraic_real_1;
 using Bound = Kernel::Bound;  // CGAL::Gmpq
 
+// A root is known to CGAL, to a certified enclosure of its own (root_enclosure.hpp), or both:
+// every question is put to the enclosure first, and to CGAL only when the enclosure cannot
+// answer it (a zero of another polynomial at the root, two equal roots, a root CGAL isolated
+// on a non-dyadic interval). The CGAL number is made on demand from the enclosure: the same
+// polynomial and an isolating interval of it.
 class RealRoot {
  public:
-  explicit RealRoot(Algebraic a) : value(std::move(a)) {}
-  Algebraic value;  // CGAL refines its interval in place (a shared, mutable representation)
+  explicit RealRoot(Algebraic a) : cgal_(std::move(a)) {}
+  explicit RealRoot(RootEnclosure e) : enclosure_(std::move(e)), tried_(true) {}
+
+  const Algebraic& cgal() const;
+  RootEnclosure* enclosure() const;
+
+ private:
+  mutable std::optional<Algebraic> cgal_;  // CGAL refines its interval in place (a shared, mutable representation)
+  mutable std::optional<RootEnclosure> enclosure_;
+  mutable bool tried_ = false;  // the enclosure was made, or cannot be made
 };
 
 namespace {
@@ -42,6 +56,13 @@ Polynomial to_cgal(const IntPoly& p) {
   return Polynomial(c.begin(), c.end());
 }
 
+IntPoly from_cgal(const Polynomial& p) {
+  IntPoly out;
+  for (int k = 0; k <= p.degree(); ++k) out.emplace_back(p[k].mpz());
+  while (!out.empty() && out.back() == 0) out.pop_back();
+  return out;
+}
+
 Bound to_bound(const Dyadic& x) {
   const mpq_class q = x.to_mpq();
   return Bound(q.get_mpq_t());
@@ -49,47 +70,110 @@ Bound to_bound(const Dyadic& x) {
 
 mpq_class to_mpq(const Bound& b) { return mpq_class(b.mpq()); }
 
+// A rational that is a dyadic number, exactly.
+std::optional<Dyadic> dyadic_of(const Bound& b) {
+  const mpq_class q = to_mpq(b);
+  const mpz_class& den = q.get_den();
+  if (mpz_popcount(den.get_mpz_t()) != 1) return std::nullopt;
+  return Dyadic(q.get_num(), -static_cast<long>(mpz_scan1(den.get_mpz_t(), 0)));
+}
+
 int to_int(CGAL::Sign s) { return s == CGAL::NEGATIVE ? -1 : (s == CGAL::POSITIVE ? 1 : 0); }
 
 }  // namespace
 
+const Algebraic& RealRoot::cgal() const {
+  if (!cgal_) {
+    const RootEnclosure& e = *enclosure_;
+    if (e.is_point())
+      cgal_ = kernel().construct_algebraic_real_1_object()(to_bound(e.lo()));
+    else  // the enclosure's invariant is CGAL's precondition: one root, non-zero opposite signs at the ends
+      cgal_ = kernel().construct_algebraic_real_1_object()(to_cgal(e.polynomial()), to_bound(e.lo()), to_bound(e.hi()));
+  }
+  return *cgal_;
+}
+
+RootEnclosure* RealRoot::enclosure() const {
+  if (!tried_) {
+    tried_ = true;
+    const Algebraic& a = *cgal_;
+    if (a.is_rational()) {
+      if (const std::optional<Dyadic> x = dyadic_of(a.rational())) enclosure_ = RootEnclosure::point(*x);
+    } else {
+      // CGAL's isolating interval of its square-free defining polynomial, if its ends are dyadic.
+      const std::optional<Dyadic> lo = dyadic_of(a.low()), hi = dyadic_of(a.high());
+      if (lo && hi) enclosure_ = RootEnclosure::isolated(from_cgal(a.polynomial()), *lo, *hi);
+    }
+  }
+  return enclosure_ ? &*enclosure_ : nullptr;
+}
+
 std::vector<RootWithMultiplicity> real_roots(const IntPoly& p) {
+  std::vector<RootWithMultiplicity> out;
+  if (p.size() == 3) {
+    const mpz_class disc = p[1] * p[1] - 4 * p[0] * p[2];
+    if (sgn(disc) < 0) return out;  // no real root: the exact discriminant says so
+    if (auto two = quadratic_roots(p)) {
+      out.push_back({std::make_shared<const RealRoot>(std::move(two->first)), 1});
+      out.push_back({std::make_shared<const RealRoot>(std::move(two->second)), 1});
+      return out;
+    }
+  }
   std::vector<std::pair<Algebraic, int>> found;
   kernel().solve_1_object()(to_cgal(p), std::back_inserter(found));
-  std::vector<RootWithMultiplicity> out;
   out.reserve(found.size());
   for (auto& [root, mult] : found) out.push_back({std::make_shared<const RealRoot>(root), mult});
   return out;
 }
 
 int sign_at(const IntPoly& p, const RealRoot& r) {
-  return to_int(kernel().sign_at_1_object()(to_cgal(p), r.value));
+  if (RootEnclosure* e = r.enclosure())
+    if (const std::optional<int> s = e->sign_of(p)) return *s;
+  return to_int(kernel().sign_at_1_object()(to_cgal(p), r.cgal()));
 }
 
 int compare(const RealRoot& a, const RealRoot& b) {
-  return to_int(kernel().compare_1_object()(a.value, b.value));
+  if (&a == &b) return 0;
+  RootEnclosure* ea = a.enclosure();
+  RootEnclosure* eb = b.enclosure();
+  if (ea && eb)
+    if (const std::optional<int> c = compare(*ea, *eb)) return *c;
+  return to_int(kernel().compare_1_object()(a.cgal(), b.cgal()));
 }
 
 int compare(const RealRoot& a, const Dyadic& x) {
-  return to_int(kernel().compare_1_object()(a.value, to_bound(x)));
+  if (RootEnclosure* e = a.enclosure()) return e->compare(x);
+  return to_int(kernel().compare_1_object()(a.cgal(), to_bound(x)));
 }
 
 int compare(const RealRoot& a, const mpq_class& x) {
-  return to_int(kernel().compare_1_object()(a.value, Bound(x.get_mpq_t())));
+  if (RootEnclosure* e = a.enclosure()) return e->compare(x);
+  return to_int(kernel().compare_1_object()(a.cgal(), Bound(x.get_mpq_t())));
 }
 
-RootHandle root_at(const Dyadic& x) {
-  return std::make_shared<const RealRoot>(kernel().construct_algebraic_real_1_object()(to_bound(x)));
-}
+RootHandle root_at(const Dyadic& x) { return std::make_shared<const RealRoot>(RootEnclosure::point(x)); }
 
 std::pair<mpq_class, mpq_class> bracket(const RealRoot& r, long bits) {
-  const auto [lo, hi] = kernel().approximate_absolute_1_object()(r.value, static_cast<int>(bits));
+  if (RootEnclosure* e = r.enclosure()) {
+    e->narrow(bits);
+    return {e->lo().to_mpq(), e->hi().to_mpq()};
+  }
+  const auto [lo, hi] = kernel().approximate_absolute_1_object()(r.cgal(), static_cast<int>(bits));
   return {to_mpq(lo), to_mpq(hi)};
 }
 
+void refine_near(const RealRoot& r, const Dyadic& x, long bits) {
+  if (RootEnclosure* e = r.enclosure()) e->newton_from(x, bits);
+}
+
 bool rational_value(const RealRoot& r, mpq_class& value) {
-  if (r.value.low() != r.value.high()) return false;
-  value = to_mpq(r.value.low());
+  if (RootEnclosure* e = r.enclosure(); e && e->is_point()) {
+    value = e->lo().to_mpq();
+    return true;
+  }
+  const Algebraic& a = r.cgal();
+  if (a.low() != a.high()) return false;
+  value = to_mpq(a.low());
   return true;
 }
 

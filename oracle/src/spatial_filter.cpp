@@ -113,24 +113,27 @@ std::vector<BodyPair> SpatialFilter::pairs_within(const Dyadic& now, const Dyadi
     drop_entry(i);
     make_entry(i, t, w);
   }
-  // Pairs not vouched for up to w; a bound made before now is remade from now first.
+  // Pairs not vouched for up to w; a bound made before now is remade from now first. Every
+  // entry up to w is taken off the heap and the live ones go back after the sweep.
   std::vector<BodyPair> out;
-  std::vector<std::pair<std::uint64_t, double>> remade;
-  for (auto it = by_time_.begin(); it != by_time_.end() && it->first <= w; ++it) {
-    const BodyPair p = pair_of(it->second);
-    double bound = it->first;
-    if (bounds_[it->second].made < t.lo()) {
-      bound = pair_bound(p.first, p.second, t);
-      remade.push_back({it->second, bound});
-    }
-    if (bound <= w) out.push_back(p);
+  struct Live {
+    std::uint64_t key;
+    double bound, made;
+  };
+  std::vector<Live> live;
+  while (!by_time_.empty() && by_time_.front().time <= w) {
+    const Timed top = by_time_.front();
+    std::pop_heap(by_time_.begin(), by_time_.end(), std::greater<>());
+    by_time_.pop_back();
+    const auto it = bounds_.find(top.key);
+    if (it == bounds_.end() || it->second.stamp != top.stamp) continue;  // stale
+    const BodyPair p = pair_of(top.key);
+    Live l{top.key, top.time, it->second.made};
+    if (l.made < t.lo()) l = {top.key, pair_bound(p.first, p.second, t), t.lo()};
+    if (l.bound <= w) out.push_back(p);
+    live.push_back(l);
   }
-  for (const auto& [key, bound] : remade) {
-    PairBound& b = bounds_[key];
-    by_time_.erase({b.time, key});
-    b = {bound, t.lo()};
-    by_time_.insert({bound, key});
-  }
+  for (const Live& l : live) push_bound(l.key, l.bound, l.made);
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -216,9 +219,7 @@ void SpatialFilter::drop_entry(BodyIndex i) {
   Entry& e = entries_[i];
   for (BodyIndex j : e.partners) {
     const std::uint64_t key = pair_key(i, j);
-    const auto it = bounds_.find(key);
-    by_time_.erase({it->second.time, key});
-    bounds_.erase(it);
+    bounds_.erase(key);  // its heap entry is stale from now on
     std::vector<BodyIndex>& back = entries_[j].partners;
     back.erase(std::find(back.begin(), back.end(), i));
   }
@@ -235,10 +236,22 @@ void SpatialFilter::drop_entry(BodyIndex i) {
 void SpatialFilter::add_pair(BodyIndex i, BodyIndex j, const Interval& now) {
   const std::uint64_t key = pair_key(i, j);
   const double bound = pair_bound(i, j, now);
-  bounds_[key] = {bound, now.lo()};
-  by_time_.insert({bound, key});
+  push_bound(key, bound, now.lo());
   entries_[i].partners.push_back(j);
   entries_[j].partners.push_back(i);
+}
+
+void SpatialFilter::push_bound(std::uint64_t key, double time, double made) {
+  const std::uint64_t stamp = ++next_stamp_;
+  bounds_[key] = {time, made, stamp};
+  by_time_.push_back({time, key, stamp});
+  std::push_heap(by_time_.begin(), by_time_.end(), std::greater<>());
+  // Stale entries are dropped when they reach the top; a heap mostly stale is rebuilt.
+  if (by_time_.size() > 2 * bounds_.size() + 1024) {
+    by_time_.clear();
+    for (const auto& [k, b] : bounds_) by_time_.push_back({b.time, k, b.stamp});
+    std::make_heap(by_time_.begin(), by_time_.end(), std::greater<>());
+  }
 }
 
 double SpatialFilter::pair_bound(BodyIndex i, BodyIndex j, const Interval& now) const {

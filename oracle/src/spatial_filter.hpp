@@ -28,7 +28,6 @@
 
 #include <cstdint>
 #include <queue>
-#include <set>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -79,6 +78,15 @@ class SpatialFilter {
   struct PairBound {
     double time = 0;  // the shapes are disjoint up to this time
     double made = 0;  // the state's time (lower bound) the bound was made at
+    std::uint64_t stamp = 0;  // the heap entry that stands for this bound
+  };
+  // The bounds by time, a binary heap with lazy deletion: an entry whose stamp is not its pair's
+  // current one (the pair was dropped or remade) is stale and skipped.
+  struct Timed {
+    double time = 0;
+    std::uint64_t key = 0;
+    std::uint64_t stamp = 0;
+    bool operator>(const Timed& o) const { return time > o.time || (time == o.time && stamp > o.stamp); }
   };
 
   void make_entry(BodyIndex i, const Interval& now, double until);
@@ -96,7 +104,9 @@ class SpatialFilter {
   std::unordered_map<std::uint64_t, std::vector<BodyIndex>> grid_;
   std::vector<BodyIndex> wide_;
   std::unordered_map<std::uint64_t, PairBound> bounds_;
-  std::set<std::pair<double, std::uint64_t>> by_time_;
+  std::vector<Timed> by_time_;  // a min-heap (std::push_heap with std::greater)
+  std::uint64_t next_stamp_ = 0;
+  void push_bound(std::uint64_t key, double time, double made);
   using Expiry = std::pair<double, std::pair<std::uint64_t, BodyIndex>>;  // until, version, body
   std::priority_queue<Expiry, std::vector<Expiry>, std::greater<>> expiry_;
 };

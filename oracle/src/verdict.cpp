@@ -1,4 +1,5 @@
 #include "judging.hpp"
+#include "roots.hpp"
 
 #include <cmath>
 #include <limits>
@@ -33,14 +34,28 @@ long long ulps_from(const Dyadic& engine, const ExactTime& exact, const TimeForm
 }
 
 double relative_error(const Dyadic& engine, const ExactTime& exact) {
-  // The exact time to 80 bits is far finer than the double this figure is reported in.
-  constexpr long kBits = 80;
   if (exact.compare(Dyadic()) == 0) return engine.is_zero() ? 0.0 : std::numeric_limits<double>::infinity();
-  const auto [lo, hi] = exact.bracket(kBits);
-  const mpq_class mid = (lo + hi) / 2;
-  if (mid == 0) return std::numeric_limits<double>::infinity();  // a time below 2^-80 s
-  const mpq_class rel = abs(mpq_class(engine.to_mpq() - mid) / mid);
-  return rel.get_d();
+  if (exact.compare(engine) == 0) return 0.0;
+  // The exact time is refined until its bracket is below 2^-kSlackBits of its distance to the
+  // engine's time: the quotient from any point of it is then within about 2^-kSlackBits of the
+  // exact |engine - exact| / exact, relatively, far below the double it is reported in (a
+  // bracket of a fixed absolute width would leave an error of 1 ulp at 2^-28 relative).
+  constexpr long kSlackBits = 64;
+  // The engine's time is near the exact one: one Newton step from it usually brackets the
+  // exact time that finely at once (a hint; the loop below checks).
+  refine_near(*exact.offset(), engine - exact.base(), kSlackBits + 8);
+  const mpq_class e = engine.to_mpq();
+  for (long bits = 80;; bits += kSlackBits) {
+    const auto [lo, hi] = exact.bracket(bits);
+    const mpq_class gap = e < lo ? mpq_class(lo - e) : (e > hi ? mpq_class(e - hi) : mpq_class(0));
+    mpz_class scale = 1;
+    scale <<= static_cast<mp_bitcnt_t>(kSlackBits);
+    if (gap > 0 && (hi - lo) * scale <= gap) {
+      const mpq_class mid = (lo + hi) / 2;
+      if (mid == 0) return std::numeric_limits<double>::infinity();  // a time below any bracket's width
+      return mpq_class(abs(mpq_class((e - mid) / mid))).get_d();
+    }
+  }
 }
 
 Verdict decide(const std::optional<ExactTime>& own, const NextEvent& earliest, const Dyadic& engine_time,

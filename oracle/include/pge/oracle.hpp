@@ -76,7 +76,9 @@ struct Judgement {
   // Engine time minus the exact pair time rounded to the engine's format, in ulps of that format
   // (positive: the engine is late); only when pair_time is set. Clamped to +-2^62.
   long long ulps = 0;
-  double relative_error = 0;  // |t_engine - t_exact| / t_exact (0 when both are 0)
+  // |t_engine - t_exact| / t_exact (0 when both are 0), from a bracket of t_exact below 2^-64 of
+  // the difference: accurate to the double it is reported in (truncated).
+  double relative_error = 0;
   Conservation conservation;
   // Signed separation of the engine's features at the engine's time from the exact contact
   // function (negative: overlap), in length units, and the contact distance it compares with
