@@ -426,6 +426,124 @@ template <class T> struct World<T>::Impl {
     return Exactly::Contact;
   }
 
+  // The refinement re-derives the scheduled feature pair only, but another vertex/edge pair of
+  // the same two outlines may touch exactly before it while its rounded root came later, or
+  // never: a box resting on a tilted segment with two vertices on its line, whose rounded
+  // contact functions are within rounding of zero (one of them exactly zero at now and
+  // receding by less than the rounding of its rate, then pulled back by gravity, a root 1e-17
+  // after now that the rounded quadratic does not have; scripts/tilted-tiles-sweep.py). So
+  // every other vertex/edge pair that may touch before the scheduled time (may_touch_first) is
+  // decided from its exact polynomial (refine::exact_feature_poly, a quadratic); an exact
+  // crossing before that time that the prediction's rules take
+  // (judge_root: on the edge, entering, the corner rule) replaces the scheduled contact, its
+  // time correctly rounded. Returns whether it did.
+  // The bound on a rounded vertex/edge function's rounding, in ulps of its terms' magnitude
+  // (may_touch_first).
+  static constexpr double kSiblingRoundingUlps = 1024;
+
+  // Whether the exact function of vertex k of o.P against edge j of o.Q may have a downward
+  // crossing that the prediction's rules take in [0, window] (relative to now), judged from its
+  // rounded function p with a generous bound on its rounding (kSiblingRoundingUlps; a bound too
+  // small would leave an earlier contact undecided, one too large costs exact quadratics):
+  // not when p stays beyond the bound on one side throughout; yes when it comes within the
+  // bound of zero at now or at its extremum (a touch or graze, whose crossing is the
+  // rounding's call); otherwise p's crossings are simple and each exact one lies within
+  // bound / |p'| of a rounded one, so yes only for a downward rounded root that early whose
+  // contact the prediction's rules (judge_root, its corner slack widened by exactly that
+  // motion along the edge) take.
+  static bool may_touch_first(const OutlineView<T>& o, std::size_t k, std::size_t j, const Vec2<T>& d0, const Poly<T>& p,
+                              const T& window, const T& reach, const T& scale) {
+    using std::abs;
+    const Vec2<T>& e = o.Q.edges[j];
+    const T rounding = T(kSiblingRoundingUlps) * std::numeric_limits<T>::epsilon() *
+                       (cross_magnitude(d0, o.dv, o.da, window, e) + reach * (abs(e.x) + abs(e.y)));
+    T least = std::min(p(T(0)), p(window)), most = std::max(p(T(0)), p(window));
+    const bool turns = p.c[2] != T(0);
+    const T extremum = turns ? -p.c[1] / (T(2) * p.c[2]) : T(0);
+    if (turns && extremum > T(0) && extremum < window) {
+      least = std::min(least, p(extremum));
+      most = std::max(most, p(extremum));
+      if (abs(p(extremum)) <= rounding) return true;
+    }
+    if (least > rounding || most < -rounding) return false;
+    if (abs(p(T(0))) <= rounding) return true;
+    bool found = false;
+    visit_downward_roots(SolverKind::Robust, p, T(0), window + window, StartRule::CrossingsOnly, [&](const T& t, bool) {
+      const T slope = abs(p.c[1] + T(2) * p.c[2] * t);
+      if (!(slope > T(0)) || t - rounding / slope <= window) found = judge_root(o, k, j, d0, t, false, scale).has_value();
+      return found;
+    });
+    return found;
+  }
+
+
+  bool earlier_outline_contact(Scheduled<T>& r) {
+    using std::abs;
+    if (r.contact != ContactKind::VertexEdge && r.contact != ContactKind::EdgeVertex) return false;
+    if (!(r.time > now)) return false;
+    const Body& a = bodies[r.lo];
+    const Body& b = bodies[r.hi];
+    const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
+    const OutlineView<T> views[2] = {view_of(a.shape, ka, b.shape, kb), view_of(b.shape, kb, a.shape, ka)};
+    const T window = r.time - now;
+    // What the rounded functions' coefficients are relative to: the pair's coordinates and
+    // each body's motion since its path was stored (the positions at now are rounded from it).
+    const auto travel = [&](const Body& x) {
+      if (x.fixed) return T(0);
+      const T tau = abs(now - x.t0);
+      return (abs(x.v0.x) + abs(x.v0.y) + (abs(x.acc.x) + abs(x.acc.y)) * tau) * tau;
+    };
+    const T scale = pair_scale(a.shape, ka.p, b.shape, kb.p);
+    const T reach = scale + travel(a) + travel(b);
+    std::optional<refine::ExactBody<T>> ea, eb;
+    const refine::Exact t_now = refine::Exact::of(now);
+    bool changed = false;
+    for (int side = 0; side < 2; ++side) {
+      const OutlineView<T>& o = views[side];
+      const ContactKind kind = side == 0 ? ContactKind::VertexEdge : ContactKind::EdgeVertex;
+      for (std::size_t j = 0; j < o.Q.vertex_count(); ++j) {
+        const Vec2<T>& e = o.Q.edges[j];
+        for (std::size_t k = 0; k < o.P.vertex_count(); ++k) {
+          const std::uint16_t fa = feature_index(side == 0 ? k : j), fb = feature_index(side == 0 ? j : k);
+          if (kind == r.contact && fa == r.feature_a && fb == r.feature_b) continue;
+          const Vec2<T> d0 = o.offset(k, j);
+          Poly<T> p;
+          p.c[0] = pge::cross(d0, e);
+          p.c[1] = pge::cross(o.dv, e);
+          p.c[2] = pge::cross(o.da, e) / T(2);
+          p.degree = 2;
+          if (!may_touch_first(o, k, j, d0, p, window, reach, scale)) continue;
+          if (!ea) {
+            ea = exact_of(a);
+            eb = exact_of(b);
+          }
+          Scheduled<T> c = r;
+          c.contact = kind;
+          c.feature_a = fa;
+          c.feature_b = fb;
+          c.at_start_overlap = false;
+          c.corner = false;
+          const std::optional<detail::exact::IntPoly> poly = refine::exact_feature_poly(*ea, *eb, c, t_now);
+          if (!poly) continue;
+          ++counts.exact_predictions;
+          const std::optional<ExactRoot> root = exact_first_contact(*poly);
+          if (!root || root->overlap || root->turn || !(root->time <= r.time)) continue;
+          const std::optional<VertexEdgeHit<T>> hit = judge_root(o, k, j, d0, root->time - now, false, scale);
+          if (!hit) continue;
+          c.time = root->time;
+          if (root->time > now) {
+            if (const std::optional<T> t = refined_time(c)) c.time = std::max(now, *t);
+          }
+          c.corner = hit->corner;
+          if (!(c.time < r.time)) continue;
+          r = c;
+          changed = true;
+        }
+      }
+    }
+    return changed;
+  }
+
   // Whether the scheduled contact's point lies on its features at its time (in T, as the
   // prediction accepts it): the circle's centre or the vertex projects onto the edge.
   bool on_feature(const Scheduled<T>& s) const {
@@ -509,6 +627,7 @@ template <class T> struct World<T>::Impl {
         reschedule(i);
         continue;
       }
+      earlier_outline_contact(r);
       heap.set(i, r);
     }
     return !owners.empty();
