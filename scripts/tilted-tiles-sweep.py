@@ -6,7 +6,7 @@ under gravity (0, -9.81), restitution 1 or 0.5, at rest, sliding down or sliding
 They carry no expected values: `pge check` judges each with the exact oracle, and robust and
 certified must pass (no miss or phantom, 0 ulps). In double all 36 pass since the refinement
 decides the other vertex/edge pairs of an outline pair that may touch first exactly
-(world.cpp, earlier_outline_contact; 16 failed before). Open in issue 22, with --scalar: in
+(engine/src/world_impl.hpp, earlier_outline_contact; 16 failed before). Open in issue 22, with --scalar: in
 float the 8 boxes and triangles sliding up fail robust's time promise by one event (8.4e6 ulps),
 in long double the 12 balls have one miss each.
 

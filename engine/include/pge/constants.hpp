@@ -121,7 +121,7 @@ inline constexpr double kNegligibleTermEpsilons = 0.125;
 namespace pge {
 
 // Certified events: contacts scheduled within this relative distance of the earliest one are
-// re-derived from the exact paths before it is processed (engine/src/world.cpp,
+// re-derived from the exact paths before it is processed (engine/src/world_impl.hpp,
 // refine_near_top). Predictions from rounded states were seen 924 ulps (1e-13 relative) from
 // the exact time; 2^-30 (9e-10) leaves a margin of four orders of magnitude.
 inline constexpr double kRefineWindowRelative = 0x1p-30;

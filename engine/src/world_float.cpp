@@ -1,0 +1,6 @@
+// World<float> (world_impl.hpp).
+#include "world_impl.hpp"
+
+namespace pge {
+template class World<float>;
+}  // namespace pge
