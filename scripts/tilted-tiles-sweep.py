@@ -4,11 +4,10 @@ a ball, a box or a triangle placed touching a ramp (the line 3x + 4y = 0, tiles 
 the joint at (0, 0) and on to (8, -6), as segments or as fixed boxes) at decimal coordinates,
 under gravity (0, -9.81), restitution 1 or 0.5, at rest, sliding down or sliding up. 36 scenes.
 They carry no expected values: `pge check` judges each with the exact oracle, and robust and
-certified must pass (no miss or phantom, 0 ulps). In double all 36 pass since the refinement
-decides the other vertex/edge pairs of an outline pair that may touch first exactly
-(engine/src/world_impl.hpp, earlier_outline_contact; 16 failed before). Open in issue 22, with --scalar: in
-float the 8 boxes and triangles sliding up fail robust's time promise by one event (8.4e6 ulps),
-in long double the 12 balls have one miss each.
+certified must pass (no miss or phantom, 0 ulps). In double and float all 36 pass since the
+refinement decides exactly the other vertex/edge pairs of an outline pair that may touch first
+(engine/src/world_impl.hpp, earlier_outline_contact; 16 failed before in double, 8 in float).
+Open in issue 22: with --scalar long-double the 12 balls have one miss each.
 
 Usage (python3, standard library only):
     python3 scripts/tilted-tiles-sweep.py DIR

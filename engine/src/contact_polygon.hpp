@@ -204,15 +204,16 @@ std::optional<VertexEdgeHit<T>> judge_root(const OutlineView<T>& o, std::size_t 
   };
   if (overlap) return VertexEdgeHit<T>{t, overlap, false};
   if (spot == EdgeSpot::Interior) return inside();
-  // Near an end (the corner slack is widened by the tangential over the normal speed, the
-  // rounding of the root's time moved along the edge): the corner rule; a vertex the corner
-  // rule rejects that lies inside the edge at that time by the slack unwidened is judged as
-  // inside it (a vertex sliding almost along the edge, whose own edge lies along it, makes the
-  // widened slack span the whole edge: the box on the incline again).
+  // Inside the edge by the slack unwidened: a face contact, whatever the corner rule would say
+  // (a box sliding along a tilted segment at a normal speed of rounding size has a widened
+  // slack spanning the whole edge, and the corner rule's bisector normal kicked it off the
+  // face at half a metre per second: fixtures/regressions/box-slides-up-a-tile-joint.json).
+  if (locate_on_edge(d, Vec2<T>{}, e, o.Q.edge_length[j], scale) == EdgeSpot::Interior) return inside();
+  // Near an end by the slack widened by the tangential over the normal speed (the rounding of
+  // the root's time moved along the edge), not by the slack itself: the corner rule.
   const std::size_t w = spot == EdgeSpot::End ? (j + 1) % o.Q.vertex_count() : j;
   const std::optional<Cone<T>> cone = overlap_cone(o.P, k, interior_directions(o.Q, w));
   if (cone && enters_cone(*cone, u, o.da)) return VertexEdgeHit<T>{t, false, true};
-  if (locate_on_edge(d, Vec2<T>{}, e, o.Q.edge_length[j], scale) == EdgeSpot::Interior) return inside();
   return std::nullopt;  // passed or left, not entered
 }
 

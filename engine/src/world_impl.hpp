@@ -534,12 +534,17 @@ template <class T> struct World<T>::Impl {
           if (!poly) continue;
           ++counts.exact_predictions;
           const std::optional<ExactRoot> root = exact_first_contact(*poly);
-          if (!root || root->overlap || root->turn || !(root->time <= r.time)) continue;
-          const std::optional<VertexEdgeHit<T>> hit = judge_root(o, k, j, d0, root->time - now, false, scale);
+          // An overlap at now is the overlap rule's (least_penetration), not a sibling's; a
+          // turn (overlapping by rounding, receding, turning back) is the turning-overlap
+          // rule's contact at its correctly rounded turning point.
+          if (!root || (root->overlap && !root->turn) || !(root->time <= r.time)) continue;
+          const std::optional<VertexEdgeHit<T>> hit = judge_root(o, k, j, d0, root->time - now, root->turn, scale);
           if (!hit) continue;
           c.time = root->time;
+          c.at_start_overlap = root->turn;
           if (root->time > now) {
-            if (const std::optional<T> t = refined_time(c)) c.time = std::max(now, *t);
+            const std::optional<T> t = root->turn ? refined_turn(*poly, root->time) : refined_time(c);
+            if (t) c.time = std::max(now, *t);
           }
           c.corner = hit->corner;
           if (!(c.time < r.time)) continue;
