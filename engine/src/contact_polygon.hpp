@@ -217,6 +217,18 @@ std::optional<VertexEdgeHit<T>> judge_root(const OutlineView<T>& o, std::size_t 
   return std::nullopt;  // passed or left, not entered
 }
 
+// The contact function of a vertex of P at d0 (relative to the start of Q's edge j at t = 0)
+// with that edge: its distance in front of the edge's line times |e|, a quadratic in t.
+template <class T> Poly<T> vertex_edge_poly(const OutlineView<T>& o, const Vec2<T>& d0, std::size_t j) {
+  const Vec2<T>& e = o.Q.edges[j];
+  Poly<T> p;
+  p.c[0] = cross(d0, e);
+  p.c[1] = cross(o.dv, e);
+  p.c[2] = cross(o.da, e) / T(2);
+  p.degree = 2;
+  return p;
+}
+
 // The earliest approaching contact of vertex k of P with edge j of Q in [0, horizon]. The
 // contact function is the distance of the vertex in front of the edge's line times |e|, a
 // quadratic; a root counts where judge_root says so. A near-graze in front of the edge is
@@ -229,11 +241,7 @@ std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const Out
                                                     std::uint16_t fb = 0) {
   const Vec2<T> d0 = o.offset(k, j);
   const Vec2<T>& e = o.Q.edges[j];
-  Poly<T> p;
-  p.c[0] = cross(d0, e);
-  p.c[1] = cross(o.dv, e);
-  p.c[2] = cross(o.da, e) / T(2);
-  p.degree = 2;
+  const Poly<T> p = vertex_edge_poly(o, d0, j);
   if (never_decreasing(p)) return std::nullopt;
   std::optional<VertexEdgeHit<T>> hit;
   std::optional<T> first_root;  // the rounded function's first downward root, judged or not

@@ -433,17 +433,6 @@ template <class T> struct World<T>::Impl {
     return Exactly::Contact;
   }
 
-  // The refinement re-derives the scheduled feature pair only, but another vertex/edge pair of
-  // the same two outlines may touch exactly before it while its rounded root came later, or
-  // never: a box resting on a tilted segment with two vertices on its line, whose rounded
-  // contact functions are within rounding of zero (one of them exactly zero at now and
-  // receding by less than the rounding of its rate, then pulled back by gravity, a root 1e-17
-  // after now that the rounded quadratic does not have; scripts/tilted-tiles-sweep.py). So
-  // every other vertex/edge pair that may touch before the scheduled time (may_touch_first) is
-  // decided from its exact polynomial (refine::exact_feature_poly, a quadratic); an exact
-  // crossing before that time that the prediction's rules take
-  // (judge_root: on the edge, entering, the corner rule) replaces the scheduled contact, its
-  // time correctly rounded. Returns whether it did.
   // The bound on a rounded vertex/edge function's rounding, in ulps of its terms' magnitude
   // (may_touch_first).
   static constexpr double kSiblingRoundingUlps = 1024;
@@ -483,11 +472,21 @@ template <class T> struct World<T>::Impl {
     return found;
   }
 
-
-  bool earlier_outline_contact(Scheduled<T>& r) {
+  // The refinement re-derives the scheduled feature pair only, but another vertex/edge pair of
+  // the same two outlines may touch exactly before it while its rounded root came later, or
+  // never: a box resting on a tilted segment with two vertices on its line, whose rounded
+  // contact functions are within rounding of zero (one of them exactly zero at now and
+  // receding by less than the rounding of its rate, then pulled back by gravity, a root 1e-17
+  // after now that the rounded quadratic does not have; scripts/tilted-tiles-sweep.py). So
+  // every other vertex/edge pair that may touch before the scheduled time (may_touch_first) is
+  // decided from its exact polynomial (refine::exact_feature_poly, a quadratic); an exact
+  // crossing before that time that the prediction's rules take
+  // (judge_root: on the edge, entering, the corner rule) replaces the scheduled contact, its
+  // time correctly rounded.
+  void earlier_outline_contact(Scheduled<T>& r) {
     using std::abs;
-    if (r.contact != ContactKind::VertexEdge && r.contact != ContactKind::EdgeVertex) return false;
-    if (!(r.time > now)) return false;
+    if (r.contact != ContactKind::VertexEdge && r.contact != ContactKind::EdgeVertex) return;
+    if (!(r.time > now)) return;
     const Body& a = bodies[r.lo];
     const Body& b = bodies[r.hi];
     const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
@@ -504,22 +503,15 @@ template <class T> struct World<T>::Impl {
     const T reach = scale + travel(a) + travel(b);
     std::optional<refine::ExactBody<T>> ea, eb;
     const refine::Exact t_now = refine::Exact::of(now);
-    bool changed = false;
     for (int side = 0; side < 2; ++side) {
       const OutlineView<T>& o = views[side];
       const ContactKind kind = side == 0 ? ContactKind::VertexEdge : ContactKind::EdgeVertex;
       for (std::size_t j = 0; j < o.Q.vertex_count(); ++j) {
-        const Vec2<T>& e = o.Q.edges[j];
         for (std::size_t k = 0; k < o.P.vertex_count(); ++k) {
           const std::uint16_t fa = feature_index(side == 0 ? k : j), fb = feature_index(side == 0 ? j : k);
           if (kind == r.contact && fa == r.feature_a && fb == r.feature_b) continue;
           const Vec2<T> d0 = o.offset(k, j);
-          Poly<T> p;
-          p.c[0] = pge::cross(d0, e);
-          p.c[1] = pge::cross(o.dv, e);
-          p.c[2] = pge::cross(o.da, e) / T(2);
-          p.degree = 2;
-          if (!may_touch_first(o, k, j, d0, p, window, reach, scale)) continue;
+          if (!may_touch_first(o, k, j, d0, vertex_edge_poly(o, d0, j), window, reach, scale)) continue;
           if (!ea) {
             ea = exact_of(a);
             eb = exact_of(b);
@@ -547,13 +539,10 @@ template <class T> struct World<T>::Impl {
             if (t) c.time = std::max(now, *t);
           }
           c.corner = hit->corner;
-          if (!(c.time < r.time)) continue;
-          r = c;
-          changed = true;
+          if (c.time < r.time) r = c;
         }
       }
     }
-    return changed;
   }
 
   // Whether the scheduled contact's point lies on its features at its time (in T, as the
