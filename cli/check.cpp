@@ -144,7 +144,10 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
     c.end_checked = true;
     c.end = referee->judge_end();
   }
-  if (referee) c.oracle = referee->stats();
+  if (referee) {
+    c.oracle = referee->stats();
+    c.motion_misses = referee->motion_misses();
+  }
   c.energy_end = to_double(stepped.end.energy());
   c.momentum_end = vec_cast<double>(stepped.end.momentum);
   c.final_states.reserve(c.bodies);

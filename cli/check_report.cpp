@@ -244,6 +244,11 @@ void print_summary(const SceneCheck& c, const Scene& s) {
                         pair_text(s, c.end.next.pairs[0].a, c.end.next.pairs[0].b), c.end.next.time->decimal(20));
     fmt::print("  judged: {} events ({} without impulse, {} by the overlap rule); end: {}\n", c.events.size(), x.no_impulse,
                x.overlap_rule, end);
+    for (const oracle::MotionMiss& m : c.motion_misses)
+      if (!m.next.pairs.empty())
+        fmt::print("  MISS: pair {} touches at {}, before body {} changed its motion at t = {:.17g}\n",
+                   pair_text(s, m.next.pairs[0].a, m.next.pairs[0].b), m.next.time->decimal(20), id_of(s, m.body),
+                   m.at.to_double());
     const auto n = verdict_counts(c);
     fmt::print("  verdicts:");
     for (int v = 0; v < oracle::kVerdictCount; ++v)
@@ -298,6 +303,15 @@ nlohmann::json summary_json(const SceneCheck& c, const Scene& s) {
   j["end_miss"] = c.end.miss;
   if (c.end.miss && !c.end.next.pairs.empty())
     j["end_pair"] = {id_of(s, c.end.next.pairs[0].a), id_of(s, c.end.next.pairs[0].b)};
+  j["motion_misses"] = nlohmann::json::array();
+  for (const oracle::MotionMiss& m : c.motion_misses) {
+    nlohmann::json k{{"body", id_of(s, m.body)}, {"at", m.at.to_double()}};
+    if (!m.next.pairs.empty()) {
+      k["pair"] = {id_of(s, m.next.pairs[0].a), id_of(s, m.next.pairs[0].b)};
+      k["exact_time"] = m.next.time->decimal(20);
+    }
+    j["motion_misses"].push_back(k);
+  }
   j["median_abs_ulps"] = median(x.abs_ulps);
   j["largest_ulps"] = x.worst_ulps ? x.worst_ulps->ulps : 0;
   j["largest_relative_time_error"] = x.worst_relative;

@@ -68,6 +68,7 @@ struct SceneCheck {
   bool end_checked = false;  // the run reached its horizon and the oracle looked for leftovers
   oracle::EndJudgement end;
   oracle::RefereeStats oracle;
+  std::vector<oracle::MotionMiss> motion_misses;  // contacts passed over before a slide off a face
   double engine_seconds = 0;
   bool filter = true;
 };

@@ -7,7 +7,9 @@ They carry no expected values: `pge check` judges each with the exact oracle, an
 certified must pass (no miss or phantom, 0 ulps). In double and float all 36 pass since the
 refinement decides exactly the other vertex/edge pairs of an outline pair that may touch first
 (engine/src/world_impl.hpp, earlier_outline_contact; 16 failed before in double, 8 in float).
-Open in issue 22: with --scalar long-double the 12 balls have one miss each.
+In long double too, since the oracle takes the lower tile as the flush continuation of a resting
+ball's face however its rounded acceleration leans (oracle/src/search.cpp, flush_with_support;
+the 12 balls had one miss each before).
 
 Usage (python3, standard library only):
     python3 scripts/tilted-tiles-sweep.py DIR

@@ -46,6 +46,7 @@ struct Referee::Impl {
   ExactState state;
   RefereeOptions options;
   RefereeStats stats;
+  std::vector<MotionMiss> motion_misses;
   std::vector<BodyModel<Dyadic>> exact;
   std::vector<BodyModel<Interval>> interval;
   FeatureCache features;
@@ -133,6 +134,7 @@ Referee& Referee::operator=(Referee&&) noexcept = default;
 
 const ExactState& Referee::state() const { return impl_->state; }
 const RefereeStats& Referee::stats() const { return impl_->stats; }
+const std::vector<MotionMiss>& Referee::motion_misses() const { return impl_->motion_misses; }
 
 Judgement Referee::judge(const ExactEvent& e, const ExactMotion& a_after, const ExactMotion& b_after) {
   const auto start = Clock::now();
@@ -180,7 +182,10 @@ EndJudgement Referee::take_motion(BodyIndex i, const ExactMotion& motion, const 
     Frame fr = m.frame();
     out.next = m.search(fr, tau, {kNoBody, kNoBody}, {});
     out.miss = out.next.time && out.next.time->compare(time) < 0;
-    if (out.miss) ++m.stats.misses_between_events;
+    if (out.miss) {
+      ++m.stats.misses_between_events;
+      m.motion_misses.push_back({i, time, out.next});
+    }
   }
   m.state.now = std::max(m.state.now, time);
   m.set_body_motion(i, motion);

@@ -93,6 +93,14 @@ struct EndJudgement {
   NextEvent next;
 };
 
+// A contact the engine passed over before a body's motion changed without a collision
+// (Referee::take_motion): the body whose motion changed, when, and the exact contacts before it.
+struct MotionMiss {
+  BodyIndex body = kNoBody;
+  Dyadic at;
+  NextEvent next;  // the earliest contact the engine did not process (next.time before `at`)
+};
+
 struct RefereeOptions {
   bool filter = true;  // the certified filters; off: every pair is solved exactly
   long agree_ulps = kAgreeUlps;
@@ -138,6 +146,8 @@ class Referee {
 
   const ExactState& state() const;
   const RefereeStats& stats() const;
+  // Every miss take_motion found, in the order found (stats().misses_between_events of them).
+  const std::vector<MotionMiss>& motion_misses() const;
 
  private:
   struct Impl;
