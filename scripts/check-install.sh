@@ -7,7 +7,12 @@
 #   4. examples/gate-my-engine configures, builds and passes its tests against that prefix
 #      (CMAKE_PREFIX_PATH), through find_package(pge);
 #   5. with --deb, `cpack -G DEB` makes the two Debian packages, and dpkg-deb lists in them the
-#      command, the headers, the libraries and the CMake package, and their dependencies.
+#      command, the headers, the libraries and the CMake package, and their dependencies;
+#   6. with --deb, as root: `dpkg -i` installs both packages, the installed /usr/bin/pge --help
+#      exits 0, examples/gate-my-engine configures against /usr (pgeConfig.cmake found in
+#      /usr/lib/cmake/pge), and `dpkg --purge` removes them again, also when a check fails (a
+#      trap), leaving the machine as it was. Not root: step 6 is skipped, and says so. If either
+#      package is installed already, step 6 is skipped too (it would not leave that install be).
 # Usage: scripts/check-install.sh [--deb] [--keep] BUILD_DIR
 #   --keep  leaves the temporary folder (its path is printed) instead of removing it
 # Environment: PGE_JOBS parallel build jobs for the example (default: number of cores).
@@ -20,7 +25,7 @@ for arg in "$@"; do
   case "$arg" in
     --deb) deb=1 ;;
     --keep) keep=1 ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0"; exit 0 ;;
     -*) echo "check-install: unknown option $arg" >&2; exit 2 ;;
     *) build=$arg ;;
   esac
@@ -33,11 +38,18 @@ build=$(cd "$build" && pwd)  # before the cd below: BUILD_DIR may be relative to
 cd "$(dirname "$0")/.."
 jobs=${PGE_JOBS:-$(nproc)}
 work=$(mktemp -d "${TMPDIR:-/tmp}/pge-check-install.XXXXXX")
-if [[ $keep -eq 1 ]]; then
-  echo "check-install: keeping $work"
-else
-  trap 'rm -rf "$work"' EXIT
-fi
+# The packages this run installed (step 6), purged on any exit; then the temporary folder.
+installed=()
+cleanup() {
+  if [[ ${#installed[@]} -gt 0 ]]; then
+    echo "-- check-install: dpkg --purge ${installed[*]}"
+    dpkg --purge "${installed[@]}" >"$work/purge.log" 2>&1 || { cat "$work/purge.log" >&2; echo "check-install: dpkg --purge ${installed[*]} failed: remove them by hand" >&2; }
+  fi
+  if [[ $keep -eq 0 ]]; then rm -rf "$work"; fi
+}
+trap cleanup EXIT
+trap 'exit 1' INT TERM HUP
+if [[ $keep -eq 1 ]]; then echo "check-install: keeping $work"; fi
 prefix=$work/prefix
 fail() { echo "check-install: FAILED: $*" >&2; exit 1; }
 step() { echo "-- check-install: $* (${SECONDS}s)"; }
@@ -97,5 +109,28 @@ if [[ $deb -eq 1 ]]; then
   done
   dpkg-deb -f "${runtime[0]}" Package Version Depends Recommends
   dpkg-deb -f "${dev[0]}" Package Version Depends
+
+  already=$(dpkg-query -W -f='${Package} ${db:Status-Abbrev}\n' pge libpge-dev 2>/dev/null | awk '$2 ~ /^.i/ {printf "%s ", $1}' || true)
+  if [[ $EUID -ne 0 ]]; then
+    step "not root: the packages are not installed (dpkg -i needs root); skipped"
+  elif [[ -n "$already" || -e /usr/bin/pge || -e /usr/lib/cmake/pge ]]; then
+    step "pge is in /usr already (${already:-files of no package}): dpkg -i skipped, so as to leave that install as it is"
+  else
+    step "dpkg -i the two packages"
+    installed=(pge libpge-dev)  # from here on the trap purges them, installed or half-installed
+    dpkg -i "${runtime[0]}" "${dev[0]}" >"$work/dpkg.log" 2>&1 || { cat "$work/dpkg.log"; fail "dpkg -i (a dependency missing? apt-get install the ones named above)"; }
+    /usr/bin/pge --help >"$work/pge-help.log" 2>&1 || { cat "$work/pge-help.log"; fail "the installed /usr/bin/pge --help exited non-zero"; }
+    grep -q 'Subcommands:' "$work/pge-help.log" || { cat "$work/pge-help.log"; fail "the installed /usr/bin/pge --help shows no subcommands"; }
+    step "examples/gate-my-engine configured against /usr"
+    cmake -S examples/gate-my-engine -B "$work/example-deb" -DCMAKE_PREFIX_PATH=/usr \
+      >"$work/example-deb.log" 2>&1 || { cat "$work/example-deb.log"; fail "configuring examples/gate-my-engine against the installed packages"; }
+    grep -q '^pge_DIR:PATH=/usr/lib/cmake/pge$' "$work/example-deb/CMakeCache.txt" \
+      || { grep '^pge_DIR' "$work/example-deb/CMakeCache.txt"; fail "the example did not find pge in /usr/lib/cmake/pge"; }
+    step "dpkg --purge the two packages"
+    names="${installed[*]}"
+    dpkg --purge "${installed[@]}" >"$work/purge.log" 2>&1 || { cat "$work/purge.log"; installed=(); fail "dpkg --purge $names"; }
+    installed=()
+    [[ ! -e /usr/bin/pge && ! -e /usr/lib/cmake/pge ]] || fail "dpkg --purge left /usr/bin/pge or /usr/lib/cmake/pge behind"
+  fi
 fi
 step "all checks passed"

@@ -21,7 +21,7 @@ namespace pge {
 
 enum class TraceMode : unsigned char { Events, Steps };
 
-// A moving body's state at one time.
+// A moving body's state at one time: position in metres, velocity in m/s (the scene's units).
 struct TraceState {
   Vec2d position;
   Vec2d velocity;

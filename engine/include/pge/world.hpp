@@ -1,5 +1,19 @@
 // The event-driven world: bodies on closed-form paths, jumping from one predicted event to
 // the next.
+//
+// Units are the scene's (pge/scene.hpp): seconds, metres, kilograms, m/s, m/s^2, joules; any
+// consistent set works, as nothing is converted. The scalar T is float, double, long double or
+// pge::Quad (the instantiations below); the scene's doubles are rounded to T once. Usage:
+//
+//   pge::World<double> world(scene);          // throws std::invalid_argument, UnsupportedScene
+//   world.on_collision([&](const pge::CollisionInfo<double>& c) {
+//     std::printf("%s hit %s at t = %g s\n", world.body_id(c.a).c_str(), world.body_id(c.b).c_str(), c.time);
+//   });
+//   world.run();                               // to the scene's run.until
+//   const pge::BodySnapshot<double> s = world.snapshot(0);   // body 0's state at time()
+//
+// A whole program (a ball dropped on a floor, stepped with pge/step_loop.hpp) with its output:
+// docs/api.md, "pge/world.hpp and pge/step_loop.hpp" (docs/examples/world.cpp). Link pge::engine.
 #pragma once
 
 #include "pge/constants.hpp"
@@ -24,7 +38,7 @@ namespace pge {
 
 // Thrown when a scene is valid but uses something this engine does not simulate yet.
 struct UnsupportedScene : std::runtime_error {
-  int body;
+  int body;  // index into Scene::bodies of the body it is about; -1 for the scene as a whole
   UnsupportedScene(int body_, const std::string& what) : std::runtime_error(what), body(body_) {}
 };
 
@@ -34,10 +48,12 @@ struct UnsupportedScene : std::runtime_error {
 // kGridMinMovingBodies moving bodies on, unless the environment variable PGE_BROAD_PHASE says
 // "grid" or "all-pairs" (how the test suites are run with either).
 enum class BroadPhase : std::uint8_t { Auto, AllPairs, Grid };
-std::string_view broad_phase_name(BroadPhase b);
+std::string_view broad_phase_name(BroadPhase b);  // "auto", "all-pairs", "grid"
 // Parses "auto", "all-pairs", "grid"; false if unknown.
 bool parse_broad_phase(std::string_view text, BroadPhase& out);
 
+// What a World takes from its caller instead of the scene's "run" block (every default: the
+// scene's).
 struct WorldOptions {
   double until = -1;              // horizon in seconds; < 0: the scene's run.until
   std::optional<SolverKind> solver;  // nothing: the scene's run.solver
@@ -52,6 +68,7 @@ struct WorldOptions {
   bool watch_tunnels = false;
 };
 
+// What a world has processed so far (World::counts()); cumulative from construction.
 struct EventCounts {
   std::uint64_t collisions = 0;   // impulses applied (approaching contacts)
   std::uint64_t grazes = 0;       // predicted contacts found not approaching at the time
@@ -86,6 +103,9 @@ template <class T> struct BodySnapshot {
   Vec2<T> velocity;
 };
 
+// One run of one scene. Movable, not copyable. A world is used from one thread; the callbacks
+// run on it, inside step(). Body indices (BodyIndex) are positions in Scene::bodies; every
+// accessor taking one throws std::out_of_range for an index >= body_count().
 template <class T> class World {
  public:
   using CollisionCallback = std::function<void(const CollisionInfo<T>&)>;
@@ -104,30 +124,40 @@ template <class T> class World {
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
+  // Each setter replaces the callback before it (one of each kind; an empty function: none).
+  // on_collision: after every contact event, once the response is applied (CollisionInfo holds
+  // the velocities before and after); also for a predicted contact found not approaching, with
+  // impulse 0 (counted in EventCounts::grazes).
   void on_collision(CollisionCallback callback);
+  // on_frame: at every frame event (WorldOptions::frames_per_second), which changes nothing.
   void on_frame(FrameCallback callback);
   void on_motion_change(MotionCallback callback);
-  // Calls `callback` when simulated time reaches `time` (ignored if past the horizon).
+  // Calls `callback` when simulated time reaches `time`, in seconds (ignored if before time() or
+  // past the horizon). The callback may call set_velocity and stop().
   void add_timer(T time, TimerCallback callback);
 
-  // Processes events until the horizon, the collision budget, a storm, or stop().
+  // Processes events until the horizon, the collision budget, a storm, or stop(); returns why it
+  // stopped (also stop_reason()). Do not call run() or step() from a callback.
   StopReason run();
-  // Processes the next event; false when the run is over (see stop_reason()).
+  // Processes the next event; false when the run is over (see stop_reason()). Calling it again
+  // after false does nothing and returns false.
   bool step();
   void stop();  // from a callback: end the run after the current event
 
+  // Simulated time, seconds: the last processed event's (collision, timer or frame); 0 before
+  // the first step; the horizon once the run reached it.
   T time() const;
-  T horizon() const;
-  StopReason stop_reason() const;
-  const StormInfo<T>& storm() const;
+  T horizon() const;  // seconds: WorldOptions::until, else the scene's run.until
+  StopReason stop_reason() const;  // meaningful once step() has returned false
+  const StormInfo<T>& storm() const;  // when stop_reason() is EventStorm: where and when
   const EventCounts& counts() const;
   // The bodies that passed through a fixed body, each once, in the order found; the paths still
   // running are tested when the run ends (step() returns false). Empty unless watched
   // (WorldOptions::watch_tunnels or a PGE_VALIDATE build).
   const std::vector<Tunnel>& tunnels() const;
 
-  std::size_t body_count() const;
-  const std::string& body_id(BodyIndex i) const;
+  std::size_t body_count() const;  // Scene::bodies.size()
+  const std::string& body_id(BodyIndex i) const;  // the scene's id
   bool is_fixed(BodyIndex i) const;
   T mass(BodyIndex i) const;  // 0 for fixed bodies (infinite mass)
   BodySnapshot<T> snapshot(BodyIndex i) const;  // at time()
@@ -148,11 +178,13 @@ template <class T> class World {
   // Bytes the world holds for its bodies, queues and grid (capacities; shapes' vertex lists
   // included), for the memory-per-body figures.
   std::size_t memory_bytes() const;
-  // Replaces a moving body's velocity at time() and reschedules it (for timer callbacks).
+  // Replaces a moving body's velocity (m/s) at time() and reschedules it (for timer callbacks);
+  // calls the motion-change callback. Throws std::invalid_argument for a fixed body.
   void set_velocity(BodyIndex i, Vec2<T> velocity);
 
   // Kinetic energy, potential energy of each body's constant acceleration field, and total
-  // momentum of the moving bodies, at time().
+  // momentum of the moving bodies, at time(): joules (sum m |v|^2 / 2; sum -m a . p, so m g y
+  // under gravity (0, -g)) and kg m / s, in T's arithmetic.
   T kinetic_energy() const;
   T potential_energy() const;
   Vec2<T> momentum() const;
@@ -171,7 +203,8 @@ template <class T> class World {
   // The largest overlap seen at any collision so far (measured at the contact time).
   Overlap largest_contact_overlap() const;
 
-  // A hash over the exact bits of time() and every body's position and velocity at time().
+  // A hash over the exact bits of time() and every body's position and velocity at time(): two
+  // runs of one scene and build give the same hash (what the golden-hash tests compare).
   std::uint64_t state_hash() const;
 
  private:

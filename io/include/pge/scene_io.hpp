@@ -1,4 +1,16 @@
-// Reading and writing scene files (JSON, format "pge-scene/1", see fixtures/README.md).
+// Reading and writing scene files (JSON, format "pge-scene/1", see fixtures/README.md): the
+// pge::Scene (pge/scene.hpp) that World, the referee and judge_trace take. Units are the file's:
+// seconds, metres, kilograms (m/s, m/s^2); nothing is converted. Link pge::io.
+//
+//   try {
+//     const pge::LoadedScene loaded = pge::read_scene_file("drop.json");
+//     pge::World<double> world(loaded.scene);
+//   } catch (const pge::SceneError& e) {
+//     std::cerr << e.what() << "\n";   // drop.json:4:39: body "ball" (bodies[0]): field ...
+//   }
+//
+// A whole program (parse, write back, a bad scene's error) with its output: docs/api.md,
+// "pge/scene_io.hpp" (docs/examples/scene_io.cpp).
 #pragma once
 
 #include "pge/scene.hpp"
@@ -21,7 +33,7 @@ struct SceneErrorPlace {
 };
 
 // A bad scene. what() is one line:
-//   FILE:LINE:COL: body "ID" (bodies[3]): field "circle.radius": must be positive, got -1
+//   FILE:LINE:COL: body "ID" (bodies[3]): field "circle.radius": must be positive and finite, got -1
 // with the parts that are unknown left out.
 class SceneError : public std::runtime_error {
  public:
@@ -56,7 +68,9 @@ struct LoadedScene {
 };
 
 // Both throw SceneError for anything wrong: unreadable file, malformed JSON, a format violation,
-// or a problem found by validate_scene.
+// or a problem found by validate_scene. A scene they return is valid: World accepts it (or
+// throws UnsupportedScene for what this engine version does not simulate). Left-out fields take
+// the defaults of pge/scene.hpp. `origin` is the name errors give the text (a path, "<stdin>").
 LoadedScene read_scene_file(const std::string& path);
 LoadedScene parse_scene(std::string_view text, const std::string& origin);
 

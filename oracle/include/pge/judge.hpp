@@ -45,6 +45,10 @@
 // judge_trace throws pge::TraceError (one line naming the line or step and the field) for a
 // trace that does not fit the scene: an unknown body, a fixed body's state, a moving body left
 // out, times not increasing, NaN or infinite numbers, a first state that is not the scene's.
+//
+// Units are the scene's: times in seconds, lengths in metres, masses in kilograms, energies in
+// joules (any consistent set works; the referee never converts). A whole program that judges a
+// stepping engine, with its output: docs/api.md, "pge/judge.hpp" (docs/examples/judge.cpp).
 #pragma once
 
 #include "pge/oracle.hpp"
@@ -59,6 +63,7 @@
 
 namespace pge::oracle {
 
+// How the referee judges a trace. The defaults are what `pge judge` uses.
 struct JudgeOptions {
   // Steps mode: a pair overlapping deeper than this fraction of its contact distance (radius
   // sum; a circle's radius against a wall or polygon; the smaller size of two polygons or
@@ -69,14 +74,22 @@ struct JudgeOptions {
   RefereeOptions referee;  // events mode: the referee's filters and agreement in ulps
 };
 
+// A steps-mode contact's verdict (the rules are in this file's opening comment). Missed and
+// Phantom fail a trace (StepJudgement::failed); OnTime and Late do not.
 enum class StepVerdict : unsigned char { OnTime, Late, Missed, Phantom };
-std::string_view step_verdict_name(StepVerdict v);  // "on_time", "late", "missed", "phantom"
+// The verdict's name in `pge judge --json`: "on_time", "late", "missed", "phantom" ("?" for a
+// value outside the enum). Never throws.
+std::string_view step_verdict_name(StepVerdict v);
 
-// Why a contact was missed.
+// Why a contact was missed: None (not missed), PassThrough (apart again at a later step start
+// without a report: tunnelling), Overlap (deeper than JudgeOptions::overlap_bound before a
+// report), Unreported (the trace ended before a report).
 enum class MissKind : unsigned char { None, PassThrough, Overlap, Unreported };
-std::string_view miss_kind_name(MissKind k);  // "", "pass_through", "overlap", "unreported"
+// "", "pass_through", "overlap", "unreported" ("?" outside the enum). Never throws.
+std::string_view miss_kind_name(MissKind k);
 
-// One contact of a steps-mode trace (or one phantom report).
+// One contact of a steps-mode trace (or one phantom report). Times in seconds, depths in the
+// scene's length unit.
 struct StepContact {
   std::string a, b;          // scene ids, in scene order
   std::size_t step = 0;      // 0-based index into Trace::steps: where it exactly happens (phantom: reported)
@@ -92,8 +105,11 @@ struct StepContact {
   double relative_depth = 0;
 };
 
+// The counts and extremes of a steps-mode judgement (what `pge judge` prints). Energies are
+// kinetic plus the potential of the scene's constant field (m g y for gravity g pointing down
+// y), in joules; drifts are relative, dimensionless.
 struct StepSummary {
-  std::size_t steps = 0;
+  std::size_t steps = 0;     // Trace::steps.size()
   std::size_t contacts = 0;  // exact contacts (on time + late + missed)
   std::size_t on_time = 0, late = 0, missed = 0, phantom = 0;
   std::size_t tunnelled = 0;           // of the missed: pass-through
@@ -106,11 +122,13 @@ struct StepSummary {
   double energy_start = 0, energy_end = 0;  // kinetic + potential of the constant field
 };
 
+// What judge_steps finds: every contact and phantom report, per-step measures, the summary.
 struct StepJudgement {
   std::vector<StepContact> contacts;  // by step, then pair
-  std::vector<double> depth;          // per step: the deepest overlap at its end (0: none)
+  std::vector<double> depth;          // per step: the deepest overlap at its end (0: none), length units
   std::vector<double> energy_drift;   // per step: (E_k - E_start) / |E_start|
   StepSummary summary;
+  // True when a contact was missed or a report was a phantom: what fails a gate.
   bool failed() const { return summary.missed > 0 || summary.phantom > 0; }
 };
 
@@ -118,13 +136,14 @@ struct StepJudgement {
 struct EventVerdict {
   std::size_t index = 0;  // into Trace::collisions
   std::string a, b;       // scene ids, in scene order
-  double t = 0;
+  double t = 0;           // the trace's collision time, seconds
   ExactEvent event;  // the collision as the referee read it (body indices in scene order)
   Judgement judgement;
 };
 
+// What judge_events finds: a verdict per collision, their counts, exact conservation.
 struct EventJudgement {
-  std::vector<EventVerdict> events;
+  std::vector<EventVerdict> events;  // one per Trace::collisions entry, in trace order
   std::optional<EndJudgement> end;  // when the trace's end record says it reached its horizon
   std::size_t counts[kVerdictCount] = {};  // per Verdict
   double largest_energy_change = 0;        // |change| / kinetic energy before, over elastic collisions
@@ -134,12 +153,15 @@ struct EventJudgement {
   double energy_start = 0, energy_end = 0;
   Vec2d momentum_start, momentum_end;
   RefereeStats stats;
+  // True when a collision is a miss or a phantom, or a contact is left before the end: what
+  // fails a gate (as `pge check`).
   bool failed() const {
     return counts[static_cast<int>(Verdict::Miss)] > 0 || counts[static_cast<int>(Verdict::Phantom)] > 0 ||
            (end && end->miss);
   }
 };
 
+// judge_trace's result: the judgement of the trace's mode (the other member stays empty).
 struct TraceJudgement {
   TraceMode mode = TraceMode::Steps;
   StepJudgement steps;    // steps mode
@@ -150,13 +172,18 @@ struct TraceJudgement {
 // Judges `trace` as a run of `scene` (the scene as PGE reads it: fixed bodies' vertices at
 // position + vertex rounded to double). Throws pge::TraceError for a trace that does not fit the
 // scene, std::invalid_argument for an invalid scene, UnsupportedScene for one PGE does not model.
+// Preconditions: none beyond a Trace as read_trace makes it or as filled in memory (the mode
+// decides which judgement runs); everything a trace can get wrong is reported by TraceError.
 TraceJudgement judge_trace(const Scene& scene, const Trace& trace, const JudgeOptions& options = {});
+// judge_trace for one mode; throws TraceError (field "mode") for a trace of the other mode.
 StepJudgement judge_steps(const Scene& scene, const Trace& trace, const JudgeOptions& options = {});
 EventJudgement judge_events(const Scene& scene, const Trace& trace, const JudgeOptions& options = {});
 
 // One line per failure ("contact bullet-wall in step 12 (exact t = 0.19662): missed (pass-through:
 // tunnelling)"), "" when nothing failed: what a test prints when it fails.
 std::string failure_text(const TraceJudgement& j);
+// One contact's line, whatever its verdict: `contact "ball"-"wall" in step 6 (exact t = 0.8125):
+// on time` (the exact time rounded to double, printed with up to 17 significant digits, seconds).
 std::string contact_text(const StepContact& c);
 
 }  // namespace pge::oracle
