@@ -52,7 +52,9 @@ struct Outcome {
   // Peers run with Record::StepTrace: the run as a step trace (pge/trace.hpp, steps mode: each
   // step's end time, every moving body's state then, the pairs the engine reported in the step;
   // engine = the setting's label), for the referee (pge/judge.hpp). It is recorded between the
-  // timed Step calls, so wall_seconds does not include it. Empty otherwise.
+  // timed Step calls, so wall_seconds does not include it, but for Box2D's note of each contact
+  // that begins (a callback inside Step: one vector append per beginning contact, recorded
+  // whether a trace is asked for or not). Empty otherwise.
   std::optional<Trace> trace;
 };
 
