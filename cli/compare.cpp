@@ -2,31 +2,71 @@
 
 #include "exit_codes.hpp"
 #include "scene_files.hpp"
+#include "stdout.hpp"
 
+#include "pge/judge.hpp"
 #include "pge/peers.hpp"
 #include "pge/scene_io.hpp"
+#include "pge/trace_io.hpp"
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <exception>
+#include <filesystem>
 #include <fstream>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <set>
 #include <stdexcept>
+#include <string>
+#include <system_error>
+#include <utility>
 
 namespace pge::cli {
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
+// Why PGE's rows have no referee columns.
+constexpr const char* kPgeNotJudged = "PGE's events are judged one by one by pge check, not as steps";
+constexpr const char* kNotAsked = "not judged (--no-judge)";
+
+// One setting's outcome and the exact referee's verdicts on its step trace (peers), or why there
+// are none.
+struct Row {
+  peers::Outcome outcome;
+  std::optional<oracle::StepSummary> referee;
+  std::size_t phantom_after_contact = 0;  // of the phantoms: see phantoms_after_contact
+  double judge_seconds = 0;  // the referee's time, apart from the outcome's wall_seconds
+  std::string note;          // no verdicts: why
+  std::string trace_file;    // where the step trace was written ("": nowhere)
+};
+
 std::string cell(double x) { return fmt::format("{:.3g}", x); }
 
-std::string row(const peers::Outcome& o) {
-  if (!o.error.empty()) return fmt::format("| {} | {} | not run: {} | | | | | |", o.setting.engine, o.setting.label, o.error);
-  return fmt::format("| {} | {} | {:.3f} | {} | {} | {} | {} | {} |", o.setting.engine, o.setting.label, o.wall_seconds,
-                     cell(o.energy_drift), cell(o.momentum_drift), cell(o.penetration), o.tunnelled, cell(o.final_error));
+std::string referee_cells(const Row& r) {
+  if (!r.referee) return "- | - | - | -";
+  const oracle::StepSummary& s = *r.referee;
+  return fmt::format("{} | {} | {} | {}", s.on_time, s.late, s.missed, s.phantom);
 }
 
-nlohmann::json to_json(const peers::Outcome& o) {
+std::string row_text(const Row& r) {
+  const peers::Outcome& o = r.outcome;
+  if (!o.error.empty())
+    return fmt::format("| {} | {} | not run: {} | | | | | | | | | |", o.setting.engine, o.setting.label, o.error);
+  return fmt::format("| {} | {} | {:.3f} | {} | {} | {} | {} | {} | {} |", o.setting.engine, o.setting.label, o.wall_seconds,
+                     cell(o.energy_drift), cell(o.momentum_drift), cell(o.penetration), o.tunnelled, cell(o.final_error),
+                     referee_cells(r));
+}
+
+nlohmann::json to_json(const Row& r) {
+  const peers::Outcome& o = r.outcome;
   nlohmann::json j = {{"engine", o.setting.engine},   {"label", o.setting.label},
                       {"hz", o.setting.hz},           {"velocity_iterations", o.setting.velocity_iterations},
                       {"position_iterations", o.setting.position_iterations},
@@ -36,8 +76,119 @@ nlohmann::json to_json(const peers::Outcome& o) {
                       {"momentum_drift", o.momentum_drift}, {"penetration", o.penetration},
                       {"tunnelled", o.tunnelled},     {"final_error", o.final_error},
                       {"reference", o.reference}};
+  if (r.referee) {
+    const oracle::StepSummary& s = *r.referee;
+    j["referee"] = {{"steps", s.steps},
+                    {"contacts", s.contacts},
+                    {"on_time", s.on_time},
+                    {"late", s.late},
+                    {"missed", s.missed},
+                    {"phantom", s.phantom},
+                    {"phantom_after_contact", r.phantom_after_contact},
+                    {"pass_through", s.tunnelled},
+                    {"continuing_reports", s.continuing_reports},
+                    {"largest_late_steps", s.largest_late_steps},
+                    {"largest_relative_depth", s.largest_relative_depth},
+                    {"seconds", r.judge_seconds}};
+  } else {
+    j["referee"] = nullptr;
+    j["referee_note"] = r.note;
+  }
+  if (!r.trace_file.empty()) j["trace"] = r.trace_file;
   if (!o.error.empty()) j["error"] = o.error;
   return j;
+}
+
+// A file name for a setting's trace: "box2d-60hz-8+3.jsonl", "chipmunk-1000hz-50.jsonl".
+std::string trace_file_name(const peers::Setting& s) {
+  std::string name = fmt::format("{}-{}hz-{}", s.engine, static_cast<long long>(s.hz), s.velocity_iterations);
+  if (s.engine == "box2d") name += fmt::format("+{}", s.position_iterations);
+  return name + ".jsonl";
+}
+
+// Writes the row's trace into dir; false (with a message) when it cannot.
+bool write_trace_file(Row& r, const std::string& dir) {
+  const std::string path = dir + "/" + trace_file_name(r.outcome.setting);
+  std::ofstream out(path);
+  if (out) write_trace(out, *r.outcome.trace);
+  out.close();
+  if (!out) {
+    fmt::print(stderr, "pge compare: cannot write {}\n", path);
+    return false;
+  }
+  r.trace_file = path;
+  return true;
+}
+
+// Of the phantom reports, those where a moving body of the pair has a contact that is not a
+// phantom (on time, late or missed) in the same step: its path changed inside the step, so the
+// referee's start-state paths no longer show where it went (a peer that resolves contacts one by
+// one inside a step, as Box2D's continuous sub-steps do, can meet a second body on its new path
+// and part from it before the step ends). Such a report may be a true contact the referee cannot
+// see; the others are phantoms on any path.
+std::size_t phantoms_after_contact(const Scene& scene, const oracle::StepJudgement& j) {
+  std::map<std::string, bool> fixed;
+  for (const BodyDesc& b : scene.bodies) fixed[b.id] = b.fixed;
+  std::set<std::pair<std::size_t, std::string>> touched;  // (step, moving body) with a contact that is not a phantom
+  for (const oracle::StepContact& c : j.contacts)
+    if (c.verdict != oracle::StepVerdict::Phantom)
+      for (const std::string* id : {&c.a, &c.b})
+        if (!fixed[*id]) touched.emplace(c.step, *id);
+  std::size_t n = 0;
+  for (const oracle::StepContact& c : j.contacts)
+    if (c.verdict == oracle::StepVerdict::Phantom && (touched.count({c.step, c.a}) || touched.count({c.step, c.b}))) ++n;
+  return n;
+}
+
+// The referee's verdicts on the row's trace.
+void judge_row(Row& r, const Scene& scene) {
+  const auto start = Clock::now();
+  try {
+    const oracle::StepJudgement j = oracle::judge_steps(scene, *r.outcome.trace);
+    r.referee = j.summary;
+    r.phantom_after_contact = phantoms_after_contact(scene, j);
+  } catch (const std::exception& e) {  // TraceError: a state the referee cannot take (NaN, ...)
+    r.note = std::string("the referee refused the trace: ") + e.what();
+    fmt::print(stderr, "pge compare: {}: {}\n", r.outcome.setting.label, r.note);
+  }
+  r.judge_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+int write_json(const std::vector<Row>& rows, const std::string& path) {
+  nlohmann::json all = nlohmann::json::array();
+  for (const Row& r : rows) all.push_back(to_json(r));
+  if (path == "-") {
+    pge_stdout() << all.dump(2) << '\n' << std::flush;
+    return kExitOk;
+  }
+  std::ofstream out(path);
+  out << all.dump(2) << '\n';
+  out.close();
+  if (!out) {
+    fmt::print(stderr, "pge compare: cannot write {}\n", path);
+    return kExitOutput;
+  }
+  return kExitOk;
+}
+
+void print_table(const CompareOptions& opt, const LoadedScene& scene, double horizon, const std::vector<Row>& rows) {
+  fmt::print("Scene {} (\"{}\"), {} bodies, {:g} simulated s; reference: PGE certified double.\n\n", opt.scene,
+             scene.scene.name, scene.scene.bodies.size(), horizon);
+  fmt::print("| engine | setting | wall time (s) | energy drift | momentum drift | penetration | tunnelled | final-state error "
+             "| contacts on time | late | missed | phantom |\n");
+  fmt::print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const Row& r : rows) fmt::print("{}\n", row_text(r));
+  fmt::print("\nEnergy drift (E_end - E_start)/|E_start|; momentum drift |P_end - P_start|/|P_start|; penetration: the "
+             "largest overlap at a step end (PGE: at a contact) / the smaller body's size; tunnelled: moving bodies "
+             "that passed through a fixed body (along PGE's arcs, along each peer step) or ended inside one or "
+             "outside the fixed bodies' box; final-state error: RMS position error / the scene's extent.\n");
+  fmt::print("Contacts (the exact referee on each peer's step trace, as pge judge): on time, reported in the step where "
+             "the contact exactly happens; late, reported steps later; missed, never reported (passed through, sunk "
+             "past half the contact distance, or the run ended); phantom, reported while the pair stays apart "
+             "through the step on the paths from the step's start (the JSON's phantom_after_contact counts those "
+             "where a body of the pair had another contact in the step, whose path the referee cannot follow). "
+             "PGE rows: - ({}).\n",
+             opt.no_judge ? kNotAsked : kPgeNotJudged);
 }
 
 }  // namespace
@@ -70,36 +221,33 @@ int compare_command(const CompareOptions& opt) {
       refused != kExitOk)
     return refused;
 
-  std::vector<peers::Outcome> rows;
-  for (const peers::Setting& s : settings) {
-    rows.push_back(peers::run_setting(scene, s, horizon, reference));
-    if (!rows.back().error.empty()) fmt::print(stderr, "pge compare: {}: {}\n", s.label, rows.back().error);
-  }
-
-  if (!opt.quiet) {
-    fmt::print("Scene {} (\"{}\"), {} bodies, {:g} simulated s; reference: PGE certified double.\n\n", opt.scene,
-               scene.scene.name, scene.scene.bodies.size(), horizon);
-    fmt::print("| engine | setting | wall time (s) | energy drift | momentum drift | penetration | tunnelled | final-state error |\n");
-    fmt::print("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
-    for (const peers::Outcome& o : rows) fmt::print("{}\n", row(o));
-    fmt::print("\nEnergy drift (E_end - E_start)/|E_start|; momentum drift |P_end - P_start|/|P_start|; penetration: the "
-               "largest overlap at a step end (PGE: at a contact) / the smaller body's size; tunnelled: moving bodies "
-               "that passed through a fixed body (along PGE's arcs, along each peer step) or ended inside one or "
-               "outside the fixed bodies' box; final-state error: RMS position error / the scene's extent.\n");
-  }
-  if (!opt.json.empty()) {
-    nlohmann::json all = nlohmann::json::array();
-    for (const peers::Outcome& o : rows) all.push_back(to_json(o));
-    std::ofstream out(opt.json);
-    out << all.dump(2) << '\n';
-    out.close();
-    if (!out) {
-      fmt::print(stderr, "pge compare: cannot write {}\n", opt.json);
+  if (!opt.trace_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(opt.trace_dir, ec);
+    if (ec) {
+      fmt::print(stderr, "pge compare: cannot make --trace-dir {}: {}\n", opt.trace_dir, ec.message());
       return kExitOutput;
     }
   }
-  const bool pge_ran = std::any_of(rows.begin(), rows.end(),
-                                   [](const peers::Outcome& o) { return o.setting.engine == "pge" && o.error.empty(); });
+  const bool record = !opt.no_judge || !opt.trace_dir.empty();
+  std::vector<Row> rows;
+  for (const peers::Setting& s : settings) {
+    Row& r = rows.emplace_back();
+    r.outcome = peers::run_setting(scene, s, horizon, reference, record ? peers::Record::StepTrace : peers::Record::Nothing);
+    if (!r.outcome.error.empty()) fmt::print(stderr, "pge compare: {}: {}\n", s.label, r.outcome.error);
+    r.note = s.engine == "pge" ? kPgeNotJudged : !r.outcome.error.empty() ? "not run" : kNotAsked;
+    if (!r.outcome.trace) continue;
+    if (!opt.trace_dir.empty() && !write_trace_file(r, opt.trace_dir)) return kExitOutput;
+    if (!opt.no_judge) judge_row(r, scene.scene);
+    r.outcome.trace.reset();  // a gas at 1000 Hz holds a million states a simulated second
+  }
+
+  if (!opt.quiet && opt.json != "-") print_table(opt, scene, horizon, rows);
+  if (!opt.json.empty())
+    if (const int code = write_json(rows, opt.json); code != kExitOk) return code;
+  const bool pge_ran = std::any_of(rows.begin(), rows.end(), [](const Row& r) {
+    return r.outcome.setting.engine == "pge" && r.outcome.error.empty();
+  });
   return pge_ran ? kExitOk : kExitStorm;
 }
 

@@ -322,8 +322,12 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"float", "double", "long-double", "quad"}))
       ->capture_default_str();
   compare_cmd->add_option("--until", compare.until, "Simulated seconds (default: the scene's run.until)")->check(kPositive);
-  compare_cmd->add_option("--json", compare.json, "Also write the rows as JSON to this file");
+  compare_cmd->add_option("--json", compare.json, "Also write the rows as JSON to this file (-: stdout, instead of the table)");
   compare_cmd->add_flag("--quiet,-q", compare.quiet, "No table on stdout");
+  compare_cmd->add_flag("--no-judge", compare.no_judge,
+                        "Leave out the exact referee's verdicts on the peers' step traces (contacts on time, late, missed, phantom)");
+  compare_cmd->add_option("--trace-dir", compare.trace_dir,
+                          "Write each peer's step trace (pge-trace/2, steps) to DIR/<engine>-<hz>hz-<iterations>.jsonl, for pge judge");
 
   JudgeCommandOptions judge;
   CLI::App* judge_cmd = app.add_subcommand(

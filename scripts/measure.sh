@@ -9,9 +9,9 @@
 #   7. pge render of the snooker scene and the report's speed-against-error chart (docs/img/);
 # and writes docs/measurements.json (machine, commit, date, every figure with its exact command),
 # docs/measurements.md, and the figures table of README.md (between <!-- figures:begin --> and
-# <!-- figures:end -->). Prints one line per step on stderr. Takes about 3 minutes on a shared
-# 2-core machine (the report and the peers are most of it), plus the build (about 10 minutes from
-# scratch). Timings depend on the machine and its load: run it idle, compare runs on one machine.
+# <!-- figures:end -->). Prints one line per step on stderr. Takes about 4 minutes on a shared
+# 2-core machine (the report and the peers, with the referee judging each peer's run, are most of
+# it), plus the build (about 10 minutes from scratch). Timings depend on the machine and its load: run it idle, compare runs on one machine.
 # Environment: PGE_BUILD_DIR (default build), PGE_JOBS (build jobs, default the number of cores).
 # Usage: scripts/measure.sh [--out DIR] [--no-peers] [--no-build]
 #   --out DIR    raw outputs (default out/measure)
@@ -87,7 +87,7 @@ if [[ $peers == 1 ]]; then
   # One simulated second, not the scene's ten: Box2D's and Chipmunk's fine settings take minutes.
   step "7/9 pge compare: the 1,000-ball peer gas for 1 s by PGE, Box2D and Chipmunk (every setting)"
   run peers "$pge" compare fixtures/scenes/peers/peers-gas-1000.json --until 1 -q --json "$out/peers-gas-1000.json" \
-    >"$out/peers.log" 2>&1   # Chipmunk's debug build greets on standard output
+    >"$out/peers.log" 2>&1
 else
   step "7/9 skipped (--no-peers)"
 fi
@@ -218,6 +218,10 @@ if "peers" in commands:
         key = re.sub(r"[^a-z0-9]+", "_", label.lower()).strip("_")
         figure(f"peers_{key}_wall_seconds", f"1,000-ball gas for 1 s, {label} ({setting}): wall time", r["wall_seconds"], "s", "peers", "peers")
         figure(f"peers_{key}_energy_drift", f"1,000-ball gas for 1 s, {label} ({setting}): energy drift", r["energy_drift"], "relative", "peers", "peers")
+        if r.get("referee"):  # the exact referee's verdicts on the peer's step trace
+            for verdict in ("on_time", "late", "missed", "phantom"):
+                figure(f"peers_{key}_contacts_{verdict}", f"1,000-ball gas for 1 s, {label} ({setting}): contacts {verdict.replace('_', ' ')}",
+                       r["referee"][verdict], "contacts", "peers", "peers")
         peer_rows.append((label, setting, r))
 
 data = {"format": "pge-measurements/1", "machine": machine, "commit": commit, "dirty": dirty, "date": date,
@@ -258,7 +262,12 @@ for label, setting, r in peer_rows:
     if label == "PGE certified/double":
         continue  # in docs/measurements.md
     what = label if r["engine"] == "pge" else f"{label} ({setting})"
-    readme.append(f"| the 1,000-ball gas for 1 s, {what}: wall time, energy drift | {r['wall_seconds']:.2f} s, {g(r['energy_drift'])} |")
+    j = r.get("referee")
+    if j:  # the exact referee on the peer's step trace
+        readme.append(f"| the 1,000-ball gas for 1 s, {what}: wall time, energy drift; contacts on time / late / missed / phantom | "
+                      f"{r['wall_seconds']:.2f} s, {g(r['energy_drift'])}; {n(j['on_time'])} / {n(j['late'])} / {n(j['missed'])} / {n(j['phantom'])} |")
+    else:
+        readme.append(f"| the 1,000-ball gas for 1 s, {what}: wall time, energy drift | {r['wall_seconds']:.2f} s, {g(r['energy_drift'])} |")
 readme.append(f"| the main job, `scripts/run-bundled.sh` (quick report with the small peer scenes), pge already built | {bundled_seconds:.0f} s |")
 short = commit[:7] + (" (with local changes)" if dirty else "")
 readme.append("")
@@ -320,13 +329,18 @@ if peer_rows:
           "`fixtures/scenes/peers/peers-gas-1000.json`: the 1,000-ball elastic gas for 1 simulated second (`--until 1`; the scene's "
           "own 10 s are in the full report), one run of each setting. "
           "A peer's best setting is the one with the smallest energy drift among those where no ball tunnelled out of the box. "
-          "[harness.md](harness.md#against-box2d-and-chipmunk) says how the peers are set up.", "",
-          "| engine | setting | wall time (s) | energy drift | tunnelled |", "| --- | --- | ---: | ---: | ---: |"]
+          "[harness.md](harness.md#against-box2d-and-chipmunk) says how the peers are set up. "
+          "The contact columns are the exact referee's verdicts on each peer's step trace (as `pge judge` gives them): "
+          "on time, late, missed, phantom; PGE's rows: - (its events are judged one by one by `pge check`).", "",
+          "| engine | setting | wall time (s) | energy drift | tunnelled | contacts on time | late | missed | phantom |",
+          "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for r in rows:
         if r.get("error"):
             continue
         setting = r["label"] if r["engine"] != "pge" else f"{r['solver']}/{r['scalar']}"
-        L.append(f"| {r['engine']} | {setting} | {r['wall_seconds']:.2f} | {g(r['energy_drift'])} | {r['tunnelled']} |")
+        j = r.get("referee")
+        verdicts = " | ".join(n(j[k]) for k in ("on_time", "late", "missed", "phantom")) if j else "- | - | - | -"
+        L.append(f"| {r['engine']} | {setting} | {r['wall_seconds']:.2f} | {g(r['energy_drift'])} | {r['tunnelled']} | {verdicts} |")
     L += ["", "```sh", commands["peers"][0], "```", ""]
 L += ["## The main job", "",
       f"`scripts/run-bundled.sh` with its default sweep (the quick report over the bundled fixtures with the four small peer "

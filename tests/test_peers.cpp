@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -138,6 +139,65 @@ TEST(PeersHeadOn, PeersSwapVelocities) {
       // The error of the final positions: at most 4 steps of travel at speed 1, over the extent
       // sqrt(148) (measured: 0.5 to 1 step's travel at 60 and 240 Hz, 0.5 to 2 at 1 kHz).
       EXPECT_LT(o.final_error, 4 / st.hz / std::sqrt(148.0)) << st.label;
+    }
+  }
+}
+
+// The step trace a peer records (issue 28). The bullet (fixtures/scenes/peers/
+// peers-bullet-thin-wall.json): a ball of radius 0.5 at x = -2, 1e4 m/s towards a wall x in
+// [0, 1e-4], to t = 1e-3: max(1, round(1e-3 hz)) = 1 step at every rate. Chipmunk moves the ball
+// 10 m in it, to x = 8, past the wall; Box2D (scale 64, peer_sim.hpp) caps it at
+// b2_maxTranslation = 2 units, 2 / 64 m, to x = -1.96875. Neither reports a contact.
+const char* kBullet = R"({"format": "pge-scene/1", "name": "bullet",
+  "bodies": [
+    {"id": "wall", "polygon": {"vertices": [[0.0, -1.0], [0.0001, -1.0], [0.0001, 1.0], [0.0, 1.0]]}, "position": [0.0, 0.0], "fixed": true},
+    {"id": "ball", "circle": {"radius": 0.5}, "position": [-2.0, 0.0], "velocity": [10000.0, 0.0], "mass": 1.0}],
+  "run": {"until": 0.001}})";
+
+TEST(PeersTrace, BulletRecordsOneStepWithoutContact) {
+  const pge::LoadedScene s = pge::parse_scene(kBullet, "bullet");
+  for (const char* engine : {"box2d", "chipmunk"}) {
+    if (!peers::available(engine)) continue;
+    for (const peers::Setting& st : peers::default_settings(engine)) {
+      EXPECT_FALSE(peers::run_setting(s, st, 0).trace.has_value()) << st.label << ": a trace not asked for";
+      const std::vector<Vec2d> reference = peers::reference_positions(s.scene, 0.001);
+      const peers::Outcome o = peers::run_setting(s, st, 0.001, reference, peers::Record::StepTrace);
+      ASSERT_TRUE(o.error.empty()) << o.error;
+      ASSERT_TRUE(o.trace.has_value()) << st.label;
+      const pge::Trace& t = *o.trace;
+      EXPECT_EQ(t.mode, pge::TraceMode::Steps);
+      EXPECT_EQ(t.engine, st.label);
+      EXPECT_EQ(t.bodies, std::vector<std::string>{"ball"});
+      ASSERT_EQ(t.steps.size(), 1u) << st.label;
+      EXPECT_EQ(t.steps[0].t, 0.001);
+      ASSERT_EQ(t.steps[0].bodies.size(), 1u);
+      EXPECT_NEAR(t.steps[0].bodies[0].position.x, std::string(engine) == "box2d" ? -1.96875 : 8.0, 1e-6) << st.label;
+      EXPECT_TRUE(t.steps[0].contacts.empty()) << st.label;
+    }
+  }
+}
+
+// Head-on (kHeadOn): the discs touch at t = 4; every peer reports the pair, first within two
+// steps of t = 4 (it resolves an overlap at a step's end), and nothing before t = 4 - 2 dt.
+TEST(PeersTrace, HeadOnReportsThePairNearTheContact) {
+  const pge::LoadedScene s = pge::parse_scene(kHeadOn, "head-on");
+  for (const char* engine : {"box2d", "chipmunk"}) {
+    if (!peers::available(engine)) continue;
+    for (const peers::Setting& st : peers::default_settings(engine)) {
+      const peers::Outcome o = peers::run_setting(s, st, 5, peers::reference_positions(s.scene, 5), peers::Record::StepTrace);
+      ASSERT_TRUE(o.trace.has_value()) << st.label;
+      const double dt = 1 / st.hz;
+      ASSERT_EQ(o.trace->steps.size(), static_cast<std::size_t>(std::lround(5 * st.hz)));
+      double first = -1;
+      for (const pge::TraceStep& step : o.trace->steps)
+        if (!step.contacts.empty()) {
+          first = step.t;
+          EXPECT_EQ(step.contacts.size(), 1u);
+          EXPECT_EQ(std::minmax(step.contacts[0].a, step.contacts[0].b), std::minmax(std::string("left"), std::string("right")));
+          break;
+        }
+      EXPECT_GE(first, 4 - 2 * dt) << st.label;
+      EXPECT_LE(first, 4 + 2 * dt) << st.label;
     }
   }
 }

@@ -10,19 +10,33 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace pge::peers::detail {
 namespace {
 
+using Pair = std::pair<std::size_t, std::size_t>;
+
+// The scene indices of a contact's two bodies, lower first (fixture user data: index + 1).
+Pair pair_of(b2Contact* c) {
+  const auto a = static_cast<std::size_t>(c->GetFixtureA()->GetUserData().pointer - 1);
+  const auto b = static_cast<std::size_t>(c->GetFixtureB()->GetUserData().pointer - 1);
+  return std::minmax(a, b);
+}
+
 // Restitution of a pair = the smaller of the two (PGE's rule; Box2D's own mix is the larger),
 // applied at every approach speed (threshold 0; Box2D's default, 1 m/s, makes slower contacts
-// perfectly inelastic).
-class MinRestitution : public b2ContactListener {
+// perfectly inelastic). And a note of every contact that begins, for the step trace: one that
+// begins and ends inside a step (in a continuous sub-step) is no longer touching after it.
+class Listener : public b2ContactListener {
  public:
   void PreSolve(b2Contact* contact, const b2Manifold*) override {
     contact->SetRestitution(std::min(contact->GetFixtureA()->GetRestitution(), contact->GetFixtureB()->GetRestitution()));
     contact->SetRestitutionThreshold(0.0f);
   }
+  void BeginContact(b2Contact* contact) override { begun.push_back(pair_of(contact)); }
+  std::vector<Pair> begun;  // since the start of the step
 };
 
 b2Vec2 to_b2(Vec2d v, double scale) {
@@ -48,6 +62,7 @@ class Box2dSim final : public PeerSim {
       const Vec2d f = field_acceleration(scene_, d) * (d.mass * scale_);
       if (f.x != 0 || f.y != 0) bodies_[i]->ApplyForceToCenter(to_b2(f, 1.0), true);
     }
+    listener_.begun.clear();
     world_.Step(static_cast<float>(dt), setting_.velocity_iterations, setting_.position_iterations);
   }
 
@@ -60,14 +75,17 @@ class Box2dSim final : public PeerSim {
     return {static_cast<double>(v.x) / scale_, static_cast<double>(v.y) / scale_};
   }
 
-  void touching_pairs(std::vector<std::pair<std::size_t, std::size_t>>& out) const override {
+  void touching_pairs(std::vector<Pair>& out) const override {
     out.clear();
-    for (b2Contact* c = world_.GetContactList(); c; c = c->GetNext()) {
-      if (!c->IsTouching()) continue;
-      const auto a = static_cast<std::size_t>(c->GetFixtureA()->GetUserData().pointer - 1);
-      const auto b = static_cast<std::size_t>(c->GetFixtureB()->GetUserData().pointer - 1);
-      out.emplace_back(std::min(a, b), std::max(a, b));
-    }
+    for (b2Contact* c = world_.GetContactList(); c; c = c->GetNext())
+      if (c->IsTouching()) out.push_back(pair_of(c));
+  }
+
+  void reported_pairs(std::vector<Pair>& out) const override {
+    touching_pairs(out);
+    out.insert(out.end(), listener_.begun.begin(), listener_.begun.end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
   }
 
  private:
@@ -133,7 +151,7 @@ class Box2dSim final : public PeerSim {
   Setting setting_;
   double scale_;
   mutable b2World world_;  // mutable: b2Fixture::GetUserData has no const overload
-  MinRestitution listener_;
+  Listener listener_;
   std::vector<b2Body*> bodies_;
 };
 

@@ -5,10 +5,14 @@
 
 #include <chipmunk/chipmunk.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
+#include <mutex>
 
 namespace pge::peers::detail {
 namespace {
@@ -23,6 +27,26 @@ constexpr double kSlopPerSize = 1e-3;
 // energy; a slower one leaves overlaps longer.
 
 cpVect to_cp(Vec2d v) { return cpv(v.x, v.y); }
+
+// Debian's libchipmunk is a debug build: the first cpSpaceNew of a process greets with printf
+// ("Initializing cpSpace - Chipmunk v7.0.3 (Debug Enabled)" and a line on NDEBUG) on standard
+// output, where pge writes its tables and JSON (`pge compare --json -`). pge's redirection of
+// std::cout (cli/stdout.hpp) does not reach C's printf, so the first space of the process is made
+// and freed here with file descriptor 1 pointed at standard error; later ones print nothing.
+void greet_on_stderr() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    std::fflush(stdout);
+    const int saved = dup(STDOUT_FILENO);
+    if (saved >= 0) dup2(STDERR_FILENO, STDOUT_FILENO);
+    cpSpaceFree(cpSpaceNew());
+    std::fflush(stdout);
+    if (saved >= 0) {
+      dup2(saved, STDOUT_FILENO);
+      close(saved);
+    }
+  });
+}
 
 class ChipmunkSim final : public PeerSim {
  public:
@@ -77,6 +101,8 @@ class ChipmunkSim final : public PeerSim {
   }
 
   void touching_pairs(std::vector<std::pair<std::size_t, std::size_t>>& out) const override { out = touching_; }
+  // Chipmunk pre-solves each pair of shapes at most once a step, and a scene body has one shape.
+  void reported_pairs(std::vector<std::pair<std::size_t, std::size_t>>& out) const override { out = touching_; }
 
  private:
   static std::size_t index_of(const cpShape* s) {
@@ -138,6 +164,7 @@ class ChipmunkSim final : public PeerSim {
 }  // namespace
 
 std::unique_ptr<PeerSim> make_chipmunk(const Scene& scene, const Setting& setting) {
+  greet_on_stderr();
   return std::make_unique<ChipmunkSim>(scene, setting);
 }
 

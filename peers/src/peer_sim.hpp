@@ -1,4 +1,4 @@
-// What peers.cpp needs from a fixed-step engine: step, read back, list touching pairs. One
+// What peers.cpp needs from a fixed-step engine: step, read back, list touching and reported pairs. One
 // implementation per peer (box2d_sim.cpp, chipmunk_sim.cpp), compiled only where it is installed.
 #pragma once
 
@@ -28,6 +28,11 @@ class PeerSim {
   virtual Vec2d velocity(std::size_t i) const = 0;
   // The pairs of scene bodies the engine holds as touching after the last step (lower index first).
   virtual void touching_pairs(std::vector<std::pair<std::size_t, std::size_t>>& out) const = 0;
+  // The pairs the engine reported in contact during the last step, lower index first, each once:
+  // what a step trace lists for the referee (pge/judge.hpp). Box2D: contacts that began in the
+  // step (BeginContact, its continuous sub-steps included) or touch after it; Chipmunk: the
+  // arbiters its collision handler pre-solved in the step.
+  virtual void reported_pairs(std::vector<std::pair<std::size_t, std::size_t>>& out) const = 0;
 };
 
 // The acceleration field of a moving body: world gravity if it takes it, plus its own.

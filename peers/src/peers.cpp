@@ -221,7 +221,30 @@ Outcome run_pge(const Scene& scene, const Setting& s, double horizon, const std:
   });
 }
 
-Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference) {
+// A step trace of a peer's run (pge/trace.hpp), its header filled: the moving bodies, in order.
+Trace step_trace_header(const Scene& scene, const Setting& s, const std::vector<std::size_t>& moving, std::uint64_t steps) {
+  Trace t;
+  t.mode = TraceMode::Steps;
+  t.engine = s.label;
+  t.scene = scene.name;
+  for (std::size_t i : moving) t.bodies.push_back(scene.bodies[i].id);
+  t.steps.reserve(static_cast<std::size_t>(steps));
+  return t;
+}
+
+// Appends the step that ended at t: the moving bodies' states (positions already read into p)
+// and the pairs the peer reported in it.
+void record_step(Trace& trace, const Scene& scene, const detail::PeerSim& sim, double t, const std::vector<std::size_t>& moving,
+                 const std::vector<Vec2d>& p, std::vector<std::pair<std::size_t, std::size_t>>& scratch) {
+  TraceStep& step = trace.steps.emplace_back();
+  step.t = t;
+  step.bodies.reserve(moving.size());
+  for (std::size_t i : moving) step.bodies.push_back({p[i], sim.velocity(i)});
+  sim.reported_pairs(scratch);
+  for (const auto& [a, b] : scratch) step.contacts.push_back({scene.bodies[a].id, scene.bodies[b].id});
+}
+
+Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference, Record record) {
   Outcome o;
   if (!(s.hz > 0)) throw std::invalid_argument("a peer setting needs a step rate (hz > 0)");
   std::unique_ptr<detail::PeerSim> sim;
@@ -244,6 +267,7 @@ Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std
   const FixedBodies fixed(scene);
   std::vector<char> crossed(n, 0);
   std::vector<std::pair<std::size_t, std::size_t>> touching;
+  if (record == Record::StepTrace) o.trace = step_trace_header(scene, s, moving, steps);
   std::vector<Vec2d> prev = p;
   double wall = 0;
   for (std::uint64_t k = 0; k < steps; ++k) {
@@ -251,6 +275,8 @@ Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std
     sim->step(dt);
     wall += std::chrono::duration<double>(Clock::now() - t0).count();
     for (std::size_t i : moving) p[i] = sim->position(i);
+    // Untimed, as the measures below: the trace costs the timed run nothing.
+    if (o.trace) record_step(*o.trace, scene, *sim, dt * static_cast<double>(k + 1), moving, p, touching);
     sim->touching_pairs(touching);
     for (const auto& [a, b] : touching) {
       const double depth = overlap_depth(scene.bodies[a], p[a], scene.bodies[b], p[b]);
@@ -361,7 +387,8 @@ Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon) 
   return run_setting(scene, s, h, reference_positions(scene.scene, h));
 }
 
-Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference) {
+Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon, const std::vector<Vec2d>& reference,
+                    Record record) {
   const double h = resolve_horizon(scene.scene, horizon);
   Outcome o;
   try {
@@ -370,7 +397,7 @@ Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon, 
     } else if (!available(s.engine)) {
       o.error = s.engine.empty() ? "no engine named" : s.engine + " is not installed (Debian: " + peer_package(s.engine) + ")";
     } else {
-      o = run_peer(scene.scene, s, h, reference);
+      o = run_peer(scene.scene, s, h, reference, record);
     }
   } catch (const detail::PeerUnsupported& e) {
     o = Outcome{};

@@ -19,8 +19,10 @@
 #pragma once
 
 #include "pge/scene_io.hpp"
+#include "pge/trace.hpp"
 #include "pge/vec2.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,7 +49,17 @@ struct Outcome {
   double final_error = 0;      // RMS of final position errors against the reference, / the scene's extent
   std::string reference;       // "pge certified double"
   std::string error;           // non-empty: not run (why)
+  // Peers run with Record::StepTrace: the run as a step trace (pge/trace.hpp, steps mode: each
+  // step's end time, every moving body's state then, the pairs the engine reported in the step;
+  // engine = the setting's label), for the referee (pge/judge.hpp). It is recorded between the
+  // timed Step calls, so wall_seconds does not include it, but for Box2D's note of each contact
+  // that begins (a callback inside Step: one vector append per beginning contact, recorded
+  // whether a trace is asked for or not). Empty otherwise.
+  std::optional<Trace> trace;
 };
+
+// Whether run_setting records a peer's run as a step trace too.
+enum class Record : bool { Nothing, StepTrace };
 
 // Subset of {"box2d", "chipmunk"}: the peers this build was compiled with.
 std::vector<std::string> installed_peers();
@@ -67,7 +79,7 @@ Setting pge_setting(const std::string& solver, const std::string& scalar);
 // reference (computed here; pass one from reference_positions to share it between settings).
 Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon);
 Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon,
-                    const std::vector<Vec2d>& reference);
+                    const std::vector<Vec2d>& reference, Record record = Record::Nothing);
 
 // The reference final state: every body's position at the horizon from PGE, certified solver,
 // double, with no collision budget. On the scenes with exact answers (head-on, Newton's cradle, a
