@@ -42,7 +42,6 @@ constexpr const char* kNotAsked = "not judged (--no-judge)";
 struct Row {
   peers::Outcome outcome;
   std::optional<oracle::StepSummary> referee;
-  std::size_t phantom_after_contact = 0;  // of the phantoms: see phantoms_after_contact
   double judge_seconds = 0;  // the referee's time, apart from the outcome's wall_seconds
   std::string note;          // no verdicts: why
   std::string trace_file;    // where the step trace was written ("": nowhere)
@@ -84,7 +83,7 @@ nlohmann::json to_json(const Row& r) {
                     {"late", s.late},
                     {"missed", s.missed},
                     {"phantom", s.phantom},
-                    {"phantom_after_contact", r.phantom_after_contact},
+                    {"unfollowed_reports", s.unfollowed_reports},
                     {"pass_through", s.tunnelled},
                     {"continuing_reports", s.continuing_reports},
                     {"largest_late_steps", s.largest_late_steps},
@@ -120,33 +119,12 @@ bool write_trace_file(Row& r, const std::string& dir) {
   return true;
 }
 
-// Of the phantom reports, those where a moving body of the pair has a contact that is not a
-// phantom (on time, late or missed) in the same step: its path changed inside the step, so the
-// referee's start-state paths no longer show where it went (a peer that resolves contacts one by
-// one inside a step, as Box2D's continuous sub-steps do, can meet a second body on its new path
-// and part from it before the step ends). Such a report may be a true contact the referee cannot
-// see; the others are phantoms on any path.
-std::size_t phantoms_after_contact(const Scene& scene, const oracle::StepJudgement& j) {
-  std::map<std::string, bool> fixed;
-  for (const BodyDesc& b : scene.bodies) fixed[b.id] = b.fixed;
-  std::set<std::pair<std::size_t, std::string>> touched;  // (step, moving body) with a contact that is not a phantom
-  for (const oracle::StepContact& c : j.contacts)
-    if (c.verdict != oracle::StepVerdict::Phantom)
-      for (const std::string* id : {&c.a, &c.b})
-        if (!fixed[*id]) touched.emplace(c.step, *id);
-  std::size_t n = 0;
-  for (const oracle::StepContact& c : j.contacts)
-    if (c.verdict == oracle::StepVerdict::Phantom && (touched.count({c.step, c.a}) || touched.count({c.step, c.b}))) ++n;
-  return n;
-}
-
 // The referee's verdicts on the row's trace.
 void judge_row(Row& r, const Scene& scene) {
   const auto start = Clock::now();
   try {
     const oracle::StepJudgement j = oracle::judge_steps(scene, *r.outcome.trace);
     r.referee = j.summary;
-    r.phantom_after_contact = phantoms_after_contact(scene, j);
   } catch (const std::exception& e) {  // TraceError: a state the referee cannot take (NaN, ...)
     r.note = std::string("the referee refused the trace: ") + e.what();
     fmt::print(stderr, "pge compare: {}: {}\n", r.outcome.setting.label, r.note);
@@ -185,8 +163,9 @@ void print_table(const CompareOptions& opt, const LoadedScene& scene, double hor
   fmt::print("Contacts (the exact referee on each peer's step trace, as pge judge): on time, reported in the step where "
              "the contact exactly happens; late, reported steps later; missed, never reported (passed through, sunk "
              "past half the contact distance, or the run ended); phantom, reported while the pair stays apart "
-             "through the step on the paths from the step's start (the JSON's phantom_after_contact counts those "
-             "where a body of the pair had another contact in the step, whose path the referee cannot follow). "
+             "through the step on the paths from the step's start (reports of a pair one of whose bodies had another "
+             "contact in the step, whose changed path the referee does not follow, are no phantoms: the JSON's "
+             "referee.unfollowed_reports counts them). "
              "PGE rows: - ({}).\n",
              opt.no_judge ? kNotAsked : kPgeNotJudged);
 }

@@ -61,8 +61,9 @@ void print_steps(const std::string& path, const LoadedScene& loaded, const Trace
   fmt::print("trace {} ({}, steps): scene {} (\"{}\"), {} steps to t = {:.17g}\n", path, label_of(trace), loaded.path,
              loaded.scene.name, s.steps, trace.steps.empty() ? 0.0 : trace.steps.back().t);
   fmt::print("  contacts: {} exact: on time {}, late {} (at most {} steps), missed {} ({} pass-through), phantom {}; {} "
-             "reports of pairs already overlapping\n",
-             s.contacts, s.on_time, s.late, s.largest_late_steps, s.missed, s.tunnelled, s.phantom, s.continuing_reports);
+             "reports of pairs already overlapping or touching, {} of pairs whose body's path changed in the step\n",
+             s.contacts, s.on_time, s.late, s.largest_late_steps, s.missed, s.tunnelled, s.phantom, s.continuing_reports,
+             s.unfollowed_reports);
   std::size_t deepest = 0;
   for (std::size_t k = 0; k < j.depth.size(); ++k)
     if (j.depth[k] > j.depth[deepest]) deepest = k;
@@ -91,6 +92,7 @@ Json steps_json(const Trace& trace, const oracle::StepJudgement& j) {
                     {"phantom", s.phantom},
                     {"tunnelled", s.tunnelled},
                     {"continuing_reports", s.continuing_reports},
+                    {"unfollowed_reports", s.unfollowed_reports},
                     {"largest_late_steps", s.largest_late_steps},
                     {"largest_depth", s.largest_depth},
                     {"largest_relative_depth", s.largest_relative_depth},

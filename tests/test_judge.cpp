@@ -327,6 +327,41 @@ TEST(JudgeSteps, ReportWithPositiveGapIsPhantom) {
   EXPECT_TRUE(j.failed());
 }
 
+// Touching exactly at the step's start is a contact already, not a phantom (a phantom's gap is
+// positive through the whole step): the ball rests against the wall, its centre at
+// 2 - 1/2 = 3/2 (gap 0), still, and the engine reports the pair in every step (a cradle's
+// touching balls, in Box2D's traces). No exact contact (the gap stays 0, no crossing), two
+// continuing reports, no phantom. Before: two phantoms, and the trace failed.
+TEST(JudgeSteps, TouchingAtTheStepStartIsNoPhantom) {
+  const oracle::StepJudgement j =
+      oracle::judge_steps(wall_scene(0.5, 0, 1.5), steps_trace({step(0.125, 1.5, 0, true), step(0.25, 1.5, 0, true)}));
+  EXPECT_TRUE(j.contacts.empty());
+  EXPECT_EQ(j.summary.continuing_reports, 2u);
+  EXPECT_EQ(j.summary.phantom, 0u);
+  EXPECT_FALSE(j.failed());
+}
+
+// A report of a pair whose body's path changed inside the step is not judged: the ball of
+// CorrectTraceIsOnTime meets the wall at x = 2 at t = 3/16, inside step 1, and the engine reports
+// that contact and also ball-"back" (a second wall at x = -1, behind the ball). On the path from
+// step 1's start (x = 1, v = 8) the gap to "back" is 1 - 1/2 + 1 = 3/2 and grows, but that path
+// ends at 3/16, where the bounce sends the ball back, and the referee does not follow the new
+// path: the report is counted as unfollowed, neither contact nor phantom. The wall's contact is
+// on time. Before: one phantom, and the trace failed.
+TEST(JudgeSteps, ReportAfterAnotherContactInTheStepIsUnfollowed) {
+  Scene scene = wall_scene();
+  scene.bodies.push_back(wall("back", {-1, -1}, {-1, 1}));
+  TraceStep bounce = step(0.25, 1, -8, true);
+  bounce.contacts.push_back({"ball", "back"});
+  const oracle::StepJudgement j = oracle::judge_steps(scene, steps_trace({step(0.125, 1, 8), bounce, step(0.375, 0, -8)}));
+  ASSERT_EQ(j.contacts.size(), 1u);
+  EXPECT_EQ(j.contacts[0].b, "wall");
+  EXPECT_EQ(j.contacts[0].verdict, StepVerdict::OnTime);
+  EXPECT_EQ(j.summary.unfollowed_reports, 1u);
+  EXPECT_EQ(j.summary.phantom, 0u);
+  EXPECT_FALSE(j.failed());
+}
+
 // The trace ends before the contact is reported: x = 13/8 at the end of step 1 (overlap 1/8,
 // within the bound), no more steps. Missed, never reported.
 TEST(JudgeSteps, UnreportedAtTheEndIsMissed) {

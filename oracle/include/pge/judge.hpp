@@ -113,7 +113,11 @@ struct StepSummary {
   std::size_t contacts = 0;  // exact contacts (on time + late + missed)
   std::size_t on_time = 0, late = 0, missed = 0, phantom = 0;
   std::size_t tunnelled = 0;           // of the missed: pass-through
-  std::size_t continuing_reports = 0;  // reports of a pair overlapping at the step's start
+  std::size_t continuing_reports = 0;  // reports of a pair overlapping or touching at the step's start
+  // Reports of a pair apart at the step's start, one of whose moving bodies has an exact contact
+  // in the same step: its path changed inside the step, past which the referee's paths from the
+  // step's start do not follow it, so the report is judged neither a contact nor a phantom.
+  std::size_t unfollowed_reports = 0;
   std::size_t largest_late_steps = 0;
   double largest_depth = 0;            // deepest overlap at any step end, length units
   double largest_relative_depth = 0;   // as a fraction of the contact distance
