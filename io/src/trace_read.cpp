@@ -65,7 +65,9 @@ class Line {
             std::initializer_list<std::string_view> optional) const {
     for (const std::string_view key : required)
       if (!object.contains(key)) fail(path + std::string(key), "missing");
-    for (const auto& [key, value] : object.items()) {
+    for (const auto& item : object.items()) {
+      // Not a structured binding: clang before 16 cannot capture one in a lambda.
+      const std::string& key = item.key();
       const auto known = [&key](std::initializer_list<std::string_view> names) {
         return std::find(names.begin(), names.end(), key) != names.end();
       };
