@@ -115,12 +115,21 @@ enum class GrazeVerdict : std::uint8_t {
   Misses,     // the exact function stays positive: no contact of this feature pair there
   Crosses,    // the exact function crosses downward: at the time written back
 };
+// Where a line contact's point lies on its edge at the exact crossing (refine.hpp,
+// exact_place_at_crossing): strictly inside, strictly beyond the start or the end, or not
+// decided (an end itself, the corner rule's).
+enum class EdgePlace : std::uint8_t { Unknown, Before, On, After };
+
 template <class T> struct GrazeJudge {
   // The feature pair (engine features, in the pair's a/b order) whose rounded function passes
   // within rounding of a double root; `t` (relative to now) is where to look for its crossing:
   // the rounded root if there is one, else the rounded minimum. On Crosses, `t` becomes the
   // crossing's time.
   virtual GrazeVerdict decide(ContactKind kind, std::uint16_t feature_a, std::uint16_t feature_b, T& t) const = 0;
+  // Where the line contact of the feature pair (VertexEdge or EdgeVertex) lies on its edge at
+  // the exact crossing nearest its rounded root `t` (relative to now), for a root the rounded
+  // rule finds within its slack of an edge's end.
+  virtual EdgePlace place(ContactKind kind, std::uint16_t feature_a, std::uint16_t feature_b, const T& t) const = 0;
 
  protected:
   ~GrazeJudge() = default;

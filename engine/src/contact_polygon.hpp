@@ -177,7 +177,10 @@ template <class T> int body_side(const OutlineView<T>& o, std::size_t j, const V
 // the vertex relative to the edge's start at t = 0) is a collision, and of which kind.
 template <class T>
 std::optional<VertexEdgeHit<T>> judge_root(const OutlineView<T>& o, std::size_t k, std::size_t j, const Vec2<T>& d0,
-                                           const T& t, bool overlap, const T& scale) {
+                                           const T& t, bool overlap, const T& scale,
+                                           const GrazeJudge<T>* exact = nullptr,
+                                           ContactKind kind = ContactKind::VertexEdge, std::uint16_t fa = 0,
+                                           std::uint16_t fb = 0) {
   const Vec2<T>& e = o.Q.edges[j];
   const Vec2<T> motion = o.dv * t + o.da * (t * t / T(2));
   const Vec2<T> d = d0 + motion;
@@ -209,6 +212,18 @@ std::optional<VertexEdgeHit<T>> judge_root(const OutlineView<T>& o, std::size_t 
   // slack spanning the whole edge, and the corner rule's bisector normal kicked it off the
   // face at half a metre per second: fixtures/regressions/box-slides-up-a-tile-joint.json).
   if (locate_on_edge(d, Vec2<T>{}, e, o.Q.edge_length[j], scale) == EdgeSpot::Interior) return inside();
+  // Near an end, where the rounding of the root's time and point decides which side of the end
+  // the exact crossing lies on, robust and certified ask the exact paths (`exact`, the feature
+  // pair (fa, fb) of the contact `kind`): strictly inside the edge is an edge contact, beyond
+  // its end none (the end vertex's feature pairs meet instead, as the oracle counts them); at
+  // the end itself the corner rule decides. (A triangle's corner aimed at a segment's end in
+  // float was missed: both corner rules rejected the two feature pairs, though the vertex's
+  // exact crossing lay inside the segment; scripts/edge-end-sweep.py.)
+  if (exact) {
+    const EdgePlace place = exact->place(kind, fa, fb, t);
+    if (place == EdgePlace::On) return inside();
+    if (place != EdgePlace::Unknown) return std::nullopt;
+  }
   // Near an end by the slack widened by the tangential over the normal speed (the rounding of
   // the root's time moved along the edge), not by the slack itself: the corner rule.
   const std::size_t w = spot == EdgeSpot::End ? (j + 1) % o.Q.vertex_count() : j;
@@ -247,7 +262,7 @@ std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const Out
   std::optional<T> first_root;  // the rounded function's first downward root, judged or not
   visit_downward_roots(solver, p, T(0), horizon, rule, [&](const T& t, bool overlap) {
     if (!first_root && !overlap) first_root = t;
-    hit = judge_root(o, k, j, d0, t, overlap, scale);
+    hit = judge_root(o, k, j, d0, t, overlap, scale, grazes, kind, fa, fb);
     return hit.has_value();
   });
   T t = T(0);
@@ -258,7 +273,7 @@ std::optional<VertexEdgeHit<T>> vertex_edge_contact(SolverKind solver, const Out
     if (g == GrazeVerdict::Misses) return std::nullopt;
     // A crossing: judged as a root is (inside a segment, by the side P's body is on).
     if (g == GrazeVerdict::Crosses) {
-      if (auto h = judge_root(o, k, j, d0, t, false, scale)) return h;
+      if (auto h = judge_root(o, k, j, d0, t, false, scale, grazes, kind, fa, fb)) return h;
     }
   }
   return hit;

@@ -461,6 +461,29 @@ template <class T> void exact_vertex_path(const ExactBody<T>& x, std::size_t k, 
   c[0] = x.vertex(c[0], k);
 }
 
+// The exact paths of a scheduled line contact's point (a circle's centre, or the vertex) and of
+// its edge's start in tau = t - now, and the edge's vector; false for a pair of no line contact.
+template <class T>
+bool line_contact_paths(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T>& s, const Exact& now,
+                        ExactVec (&p)[3], ExactVec (&start)[3], ExactVec& e) {
+  if (s.contact == ContactKind::CircleEdge) {
+    const bool a_circle = a.shape->kind == ShapeKind::Circle;
+    const std::size_t k = a_circle ? s.feature_b : s.feature_a;
+    exact_point_path(a_circle ? a : b, now, p);
+    exact_vertex_path(a_circle ? b : a, k, now, start);
+    e = (a_circle ? b : a).edge(k);
+    return true;
+  }
+  if (s.contact != ContactKind::VertexEdge && s.contact != ContactKind::EdgeVertex) return false;
+  const bool a_vertex = s.contact == ContactKind::VertexEdge;
+  const std::size_t k = a_vertex ? s.feature_a : s.feature_b;  // vertex
+  const std::size_t j = a_vertex ? s.feature_b : s.feature_a;  // edge
+  exact_vertex_path(a_vertex ? a : b, k, now, p);
+  exact_vertex_path(a_vertex ? b : a, j, now, start);
+  e = (a_vertex ? b : a).edge(j);
+  return true;
+}
+
 // The line function of a scheduled line contact (CircleEdge, VertexEdge or EdgeVertex) in
 // tau = t - now, sigma[0] + sigma[1] tau + sigma[2] tau^2: cross(centre - edge start, e) for a
 // circle against edge e, cross(vertex - edge start, e) for a vertex against it (positive in
@@ -470,21 +493,55 @@ void exact_line_poly(const ExactBody<T>& a, const ExactBody<T>& b, const Schedul
                      Exact sigma[3]) {
   ExactVec p[3], start[3];
   ExactVec e;
-  if (s.contact == ContactKind::CircleEdge) {
-    const bool a_circle = a.shape->kind == ShapeKind::Circle;
-    const std::size_t k = a_circle ? s.feature_b : s.feature_a;
-    exact_point_path(a_circle ? a : b, now, p);
-    exact_vertex_path(a_circle ? b : a, k, now, start);
-    e = (a_circle ? b : a).edge(k);
-  } else {
-    const bool a_vertex = s.contact == ContactKind::VertexEdge;
-    const std::size_t k = a_vertex ? s.feature_a : s.feature_b;  // vertex
-    const std::size_t j = a_vertex ? s.feature_b : s.feature_a;  // edge
-    exact_vertex_path(a_vertex ? a : b, k, now, p);
-    exact_vertex_path(a_vertex ? b : a, j, now, start);
-    e = (a_vertex ? b : a).edge(j);
-  }
+  line_contact_paths(a, b, s, now, p, start, e);
   for (int i = 0; i < 3; ++i) sigma[i] = cross(p[i] - start[i], e);
+}
+
+// Where a scheduled line contact's point (a circle's centre or a vertex, against an edge) lies
+// at the exact crossing of its contact function that [lo, hi] brackets (exact times, now <= lo
+// < hi, the function positive at lo and not at hi; refine::correctly_rounded_crossing's T
+// value and its neighbours): strictly inside the edge, strictly before its start, strictly past
+// its end, or Unknown (an end itself, which is the corner rule's, a bracket that does not hold,
+// or not decided within kPlaceBisections; EdgePlace, contact_common.hpp). The oracle counts a line contact only where its
+// point lies on the closed edge; beyond an end, the end vertex's feature pairs meet instead.
+// The point's projection on the edge, dot(point - start, e), is a quadratic in tau = t - now;
+// an interval on which it is monotone (its slope of one sign at both ends) and on one side of
+// 0 and of e.e at both ends decides; otherwise the bracket is halved at its exact midpoint,
+// keeping the crossing (the contact function's exact sign there).
+inline constexpr int kPlaceBisections = 160;
+
+template <class T>
+EdgePlace exact_place_at_crossing(const ExactBody<T>& a, const ExactBody<T>& b, const Scheduled<T>& s,
+                                  const Exact& now, Exact lo, Exact hi) {
+  ExactVec p[3], start[3];
+  ExactVec e;
+  if (!line_contact_paths(a, b, s, now, p, start, e)) return EdgePlace::Unknown;
+  const std::optional<detail::exact::IntPoly> poly = exact_feature_poly(a, b, s, now);
+  if (!poly) return EdgePlace::Unknown;
+  const auto contact = [&](const Exact& t) { return detail::exact::sign_at(*poly, (t - now).d); };
+  if (!(contact(lo) > 0 && contact(hi) <= 0)) return EdgePlace::Unknown;
+  Exact q[3];
+  for (int i = 0; i < 3; ++i) q[i] = dot(p[i] - start[i], e);
+  const Exact length2 = dot(e, e);
+  const auto along = [&](const Exact& t) {
+    const Exact tau = t - now;
+    return q[0] + (q[1] + q[2] * tau) * tau;
+  };
+  const auto slope = [&](const Exact& t) { return (q[1] + Exact(2) * q[2] * (t - now)).sign(); };
+  const auto place = [&](const Exact& x) {  // of one projection value, strictly
+    if (x.sign() < 0) return EdgePlace::Before;
+    if ((x - length2).sign() > 0) return EdgePlace::After;
+    return x.sign() > 0 && (x - length2).sign() < 0 ? EdgePlace::On : EdgePlace::Unknown;
+  };
+  for (int k = 0; k <= kPlaceBisections; ++k) {
+    if (contact(hi) == 0) return place(along(hi));  // the crossing is hi itself
+    const EdgePlace at_lo = place(along(lo));
+    if (at_lo != EdgePlace::Unknown && at_lo == place(along(hi)) && (q[2].sign() == 0 || slope(lo) == slope(hi)))
+      return at_lo;
+    const Exact mid((lo + hi).half());
+    (contact(mid) > 0 ? lo : hi) = mid;
+  }
+  return EdgePlace::Unknown;
 }
 
 // --- Near-grazes of line contacts, decided exactly (robust and certified).

@@ -261,23 +261,51 @@ template <class T> struct World<T>::Impl {
     return refine::correctly_rounded_crossing(s.time, now, sign);
   }
 
-  // A line contact of the pair (lo, hi) whose rounded function passes within rounding of a
-  // double root, decided from the exact paths (refine.hpp, exact_line_graze); a crossing's time
-  // then correctly rounded from the exact paths, searched from `tau` (relative to now: the
-  // rounded root, else the rounded minimum) and written back. Counted in counts.exact_predictions.
-  GrazeVerdict line_graze(BodyIndex lo, BodyIndex hi, ContactKind kind, std::uint16_t fa, std::uint16_t fb, T& tau) {
-    ++counts.exact_predictions;
+  // The feature pair (fa, fb) of the contact `kind` of the pair (lo, hi), as the refinement's
+  // exact functions read a scheduled contact.
+  static Scheduled<T> feature_pair(BodyIndex lo, BodyIndex hi, ContactKind kind, std::uint16_t fa, std::uint16_t fb) {
     Scheduled<T> s;
     s.lo = lo;
     s.hi = hi;
     s.contact = kind;
     s.feature_a = fa;
     s.feature_b = fb;
+    return s;
+  }
+
+  // A line contact of the pair (lo, hi) whose rounded function passes within rounding of a
+  // double root, decided from the exact paths (refine.hpp, exact_line_graze); a crossing's time
+  // then correctly rounded from the exact paths, searched from `tau` (relative to now: the
+  // rounded root, else the rounded minimum) and written back. Counted in counts.exact_predictions.
+  GrazeVerdict line_graze(BodyIndex lo, BodyIndex hi, ContactKind kind, std::uint16_t fa, std::uint16_t fb, T& tau) {
+    ++counts.exact_predictions;
+    Scheduled<T> s = feature_pair(lo, hi, kind, fa, fb);
     const GrazeVerdict g = refine::exact_line_graze(exact_of(bodies[lo]), exact_of(bodies[hi]), s, refine::Exact::of(now));
     if (g != GrazeVerdict::Crosses) return g;
     s.time = T(now + tau);
     if (const std::optional<T> t = refined_time(s)) tau = *t - now;
     return g;
+  }
+  // Where the line contact of the pair (lo, hi)'s feature pair lies on its edge at the exact
+  // crossing nearest now + tau (its time correctly rounded first): GrazeJudge::place. Counted in
+  // counts.exact_predictions.
+  EdgePlace crossing_place(BodyIndex lo, BodyIndex hi, ContactKind kind, std::uint16_t fa, std::uint16_t fb,
+                           const T& tau) {
+    ++counts.exact_predictions;
+    Scheduled<T> s = feature_pair(lo, hi, kind, fa, fb);
+    s.time = T(now + tau);
+    const std::optional<T> t = refined_time(s);
+    if (!t || !(*t > now)) return EdgePlace::Unknown;
+    s.time = *t;
+    return crossing_place(exact_of(bodies[lo]), exact_of(bodies[hi]), s);
+  }
+  // The same for a scheduled line contact whose time is its correctly rounded crossing: the
+  // crossing lies between the T values next to it (refine::exact_place_at_crossing).
+  EdgePlace crossing_place(const refine::ExactBody<T>& a, const refine::ExactBody<T>& b, const Scheduled<T>& r) const {
+    const T before = std::max(now, T(boost::math::float_prior(r.time)));
+    const T after = boost::math::float_next(r.time);
+    return refine::exact_place_at_crossing(a, b, r, refine::Exact::of(now), refine::Exact::of(before),
+                                           refine::Exact::of(after));
   }
   struct LineGrazes final : GrazeJudge<T> {
     Impl& w;
@@ -285,6 +313,9 @@ template <class T> struct World<T>::Impl {
     LineGrazes(Impl& w_, BodyIndex lo_, BodyIndex hi_) : w(w_), lo(lo_), hi(hi_) {}
     GrazeVerdict decide(ContactKind kind, std::uint16_t fa, std::uint16_t fb, T& tau) const override {
       return w.line_graze(lo, hi, kind, fa, fb, tau);
+    }
+    EdgePlace place(ContactKind kind, std::uint16_t fa, std::uint16_t fb, const T& tau) const override {
+      return w.crossing_place(lo, hi, kind, fa, fb, tau);
     }
   };
 
@@ -503,6 +534,7 @@ template <class T> struct World<T>::Impl {
     const T reach = scale + travel(a) + travel(b);
     std::optional<refine::ExactBody<T>> ea, eb;
     const refine::Exact t_now = refine::Exact::of(now);
+    const LineGrazes exact_judge(*this, r.lo, r.hi);
     for (int side = 0; side < 2; ++side) {
       const OutlineView<T>& o = views[side];
       const ContactKind kind = side == 0 ? ContactKind::VertexEdge : ContactKind::EdgeVertex;
@@ -530,7 +562,8 @@ template <class T> struct World<T>::Impl {
           // turn (overlapping by rounding, receding, turning back) is the turning-overlap
           // rule's contact at its correctly rounded turning point.
           if (!root || (root->overlap && !root->turn) || !(root->time <= r.time)) continue;
-          const std::optional<VertexEdgeHit<T>> hit = judge_root(o, k, j, d0, root->time - now, root->turn, scale);
+          const std::optional<VertexEdgeHit<T>> hit =
+              judge_root(o, k, j, d0, root->time - now, root->turn, scale, &exact_judge, kind, fa, fb);
           if (!hit) continue;
           c.time = root->time;
           c.at_start_overlap = root->turn;
@@ -539,9 +572,132 @@ template <class T> struct World<T>::Impl {
             if (t) c.time = std::max(now, *t);
           }
           c.corner = hit->corner;
-          if (c.time < r.time) r = c;
+          // Beyond the edge's end exactly: the rounded rule's corner slack took it (see
+          // off_feature_contact).
+          if (c.time < r.time && !(c.time > now && off_edge(crossing_place(*ea, *eb, c)))) r = c;
         }
       }
+    }
+  }
+
+  // A line contact (a vertex or a circle against an edge) whose correctly rounded crossing the
+  // exact paths put beyond an end of the edge (crossing_place): the prediction's corner slack,
+  // widened by the motion along a nearly tangent edge,
+  // accepted a point up to that motion beyond the corner, but the oracle counts only a point on
+  // the closed edge, and the true first contact is the corner's other feature pair, later
+  // (scripts/edge-end-sweep.py, end-356: a triangle's edge nearly along its motion took a
+  // segment's end 5e-12 of its length beyond the corner, 10,219 ulps before the triangle's
+  // vertex met the segment). The earliest exact contact of a sibling feature pair within the
+  // refinement's window of the crossing (refine_bound, where the refinement already moves
+  // times) replaces it: for outlines every other vertex/edge pair (earlier_outline_contact),
+  // for a circle the vertex at that end. If none is there, the rounded decision stands.
+  // Whether the scheduled contact's point (a line contact's vertex or circle centre; a
+  // circle-vertex contact's centre, against the vertex's two edges) lies within a generous bound
+  // on its rounding of an edge's end at its time, or at any time within the refinement's window
+  // of it: only there can the exact paths put it on the other side of the end
+  // (off_feature_contact asks them only then). The bound: kSiblingRoundingUlps of the terms of
+  // the projection dot(point - start, e) (the world coordinates it is rounded from), plus the
+  // relative motion along e over the window and two ulps of the time.
+  bool near_edge_end(const Scheduled<T>& r) const {
+    using std::abs;
+    const Body& a = bodies[r.lo];
+    const Body& b = bodies[r.hi];
+    const Kinematics<T> ka = kinematics(a, r.time), kb = kinematics(b, r.time);
+    const bool vertex = r.contact == ContactKind::VertexEdge || r.contact == ContactKind::EdgeVertex;
+    const bool a_edge = vertex ? r.contact == ContactKind::EdgeVertex : a.shape.kind != ShapeKind::Circle;
+    const Body& eb = a_edge ? a : b;
+    const Body& pb = a_edge ? b : a;
+    const Kinematics<T>& ke = a_edge ? ka : kb;
+    const Kinematics<T>& kp = a_edge ? kb : ka;
+    const std::size_t f = a_edge ? r.feature_a : r.feature_b;  // the edge (or vertex) feature
+    const Vec2<T> point = vertex ? pb.shape.vertex(kp.p, a_edge ? r.feature_b : r.feature_a) : kp.p;
+    const Vec2<T> dv = kp.v - ke.v;
+    const T window = refine_bound(r.time) - r.time + T(2) * std::numeric_limits<T>::epsilon() * abs(r.time);
+    const auto l1 = [](const Vec2<T>& v) { return abs(v.x) + abs(v.y); };
+    // Within the bound of 0 or of e.e, for the projection on edge j relative to the edge's start.
+    const auto near = [&](std::size_t j, bool start_only, bool end_only) {
+      const Vec2<T> start = eb.shape.vertex(ke.p, j);
+      const Vec2<T>& e = eb.shape.edges[j];
+      const T along = dot(point - start, e), ee = dot(e, e);
+      const T bound = T(kSiblingRoundingUlps) * std::numeric_limits<T>::epsilon() * (l1(point) + l1(start)) * l1(e) +
+                      l1(dv) * l1(e) * window;
+      return (!end_only && abs(along) <= bound) || (!start_only && abs(along - ee) <= bound);
+    };
+    if (r.contact != ContactKind::CircleVertex) return near(f, false, false);
+    if (eb.shape.kind == ShapeKind::Segment) return near(0, f == 0, f == 1);
+    const std::size_t n = eb.shape.vertex_count();
+    return near((f + n - 1) % n, false, true) || near(f, true, false);
+  }
+
+  static bool off_edge(EdgePlace p) { return p == EdgePlace::Before || p == EdgePlace::After; }
+  void off_feature_contact(Scheduled<T>& r) {
+    if (r.contact == ContactKind::CircleCircle || !near_edge_end(r)) return;
+    if (r.contact == ContactKind::CircleVertex) {
+      earlier_circle_edge_contact(r);
+      return;
+    }
+    const refine::ExactBody<T> a = exact_of(bodies[r.lo]), b = exact_of(bodies[r.hi]);
+    const EdgePlace place = crossing_place(a, b, r);
+    if (!off_edge(place)) return;
+    ++counts.exact_predictions;
+    Scheduled<T> sibling = r;
+    sibling.time = refine_bound(r.time);
+    if (r.contact == ContactKind::CircleEdge) {
+      const bool a_circle = bodies[r.lo].shape.kind == ShapeKind::Circle;
+      const BodyShape<T>& outline = (a_circle ? bodies[r.hi] : bodies[r.lo]).shape;
+      const std::size_t j = a_circle ? r.feature_b : r.feature_a;
+      const std::uint16_t end = feature_index(place == EdgePlace::Before ? j : (j + 1) % outline.vertex_count());
+      sibling.contact = ContactKind::CircleVertex;
+      (a_circle ? sibling.feature_b : sibling.feature_a) = end;
+      sibling.at_start_overlap = false;
+      sibling.corner = false;
+      const std::optional<detail::exact::IntPoly> poly = refine::exact_feature_poly(a, b, sibling, refine::Exact::of(now));
+      const std::optional<ExactRoot> root = poly ? exact_first_contact(*poly) : std::nullopt;
+      if (!root || root->overlap || !(root->time <= sibling.time)) return;
+      sibling.time = root->time;
+      if (root->time > now) {
+        if (const std::optional<T> t = refined_time(sibling)) sibling.time = std::max(now, *t);
+      }
+      r = sibling;
+      return;
+    }
+    earlier_outline_contact(sibling);
+    if (sibling.time < refine_bound(r.time)) r = sibling;
+  }
+
+  // A circle scheduled against a vertex whose rounded prediction put its contact with an
+  // adjacent edge just beyond the edge's end (a circle aimed at a segment's end: its edge and
+  // end contact functions meet tangentially there, and rounding picks either; the edge's is
+  // first where the exact point lies inside, by a few ulps in long double,
+  // scripts/edge-end-sweep.py): each adjacent edge's exact crossing before the scheduled time
+  // whose point lies strictly inside the edge (crossing_place) replaces it.
+  void earlier_circle_edge_contact(Scheduled<T>& r) {
+    const bool a_circle = bodies[r.lo].shape.kind == ShapeKind::Circle;
+    const BodyShape<T>& outline = (a_circle ? bodies[r.hi] : bodies[r.lo]).shape;
+    const std::size_t k = a_circle ? r.feature_b : r.feature_a;
+    const std::size_t n = outline.vertex_count();
+    const refine::ExactBody<T> a = exact_of(bodies[r.lo]), b = exact_of(bodies[r.hi]);
+    const refine::Exact t_now = refine::Exact::of(now);
+    // A segment's one edge (feature 0) ends at both vertices; a polygon's vertex k ends edge
+    // k - 1 and starts edge k.
+    const std::size_t edges[2] = {outline.kind == ShapeKind::Segment ? 0 : (k + n - 1) % n,
+                                  outline.kind == ShapeKind::Segment ? 0 : k};
+    for (int i = 0; i < (outline.kind == ShapeKind::Segment ? 1 : 2); ++i) {
+      Scheduled<T> c = r;
+      c.contact = ContactKind::CircleEdge;
+      (a_circle ? c.feature_b : c.feature_a) = feature_index(edges[i]);
+      c.at_start_overlap = false;
+      c.corner = false;
+      const std::optional<detail::exact::IntPoly> poly = refine::exact_feature_poly(a, b, c, t_now);
+      if (!poly) continue;
+      ++counts.exact_predictions;
+      const std::optional<ExactRoot> root = exact_first_contact(*poly);
+      if (!root || root->overlap || !(root->time > now) || !(root->time <= r.time)) continue;
+      c.time = root->time;
+      const std::optional<T> t = refined_time(c);
+      if (!t || !(*t > now) || !(*t < r.time)) continue;
+      c.time = *t;
+      if (crossing_place(a, b, c) == EdgePlace::On) r = c;
     }
   }
 
@@ -613,8 +769,10 @@ template <class T> struct World<T>::Impl {
       bool again = turn;
       if (!turn) {
         const std::optional<T> t = refined_time(s);
-        if (t && *t > now) r.time = *t;
-        else {
+        if (t && *t > now) {
+          r.time = *t;
+          off_feature_contact(r);
+        } else {
           if (t) r.time = now;
           again = true;
         }
