@@ -580,17 +580,6 @@ template <class T> struct World<T>::Impl {
     }
   }
 
-  // A line contact (a vertex or a circle against an edge) whose correctly rounded crossing the
-  // exact paths put beyond an end of the edge (crossing_place): the prediction's corner slack,
-  // widened by the motion along a nearly tangent edge,
-  // accepted a point up to that motion beyond the corner, but the oracle counts only a point on
-  // the closed edge, and the true first contact is the corner's other feature pair, later
-  // (scripts/edge-end-sweep.py, end-356: a triangle's edge nearly along its motion took a
-  // segment's end 5e-12 of its length beyond the corner, 10,219 ulps before the triangle's
-  // vertex met the segment). The earliest exact contact of a sibling feature pair within the
-  // refinement's window of the crossing (refine_bound, where the refinement already moves
-  // times) replaces it: for outlines every other vertex/edge pair (earlier_outline_contact),
-  // for a circle the vertex at that end. If none is there, the rounded decision stands.
   // Whether the scheduled contact's point (a line contact's vertex or circle centre; a
   // circle-vertex contact's centre, against the vertex's two edges) lies within a generous bound
   // on its rounding of an edge's end at its time, or at any time within the refinement's window
@@ -630,6 +619,18 @@ template <class T> struct World<T>::Impl {
   }
 
   static bool off_edge(EdgePlace p) { return p == EdgePlace::Before || p == EdgePlace::After; }
+  // A line contact (a vertex or a circle against an edge) whose correctly rounded crossing the
+  // exact paths put beyond an end of the edge (crossing_place): the prediction's corner slack,
+  // widened by the motion along a nearly tangent edge, accepted a point up to that motion
+  // beyond the corner, but the oracle counts only a point on the closed edge, and the true
+  // first contact is the corner's other feature pair, later (scripts/edge-end-sweep.py,
+  // end-356: a triangle's edge nearly along its motion took a segment's end 5e-12 of its length
+  // beyond the corner, 10,219 ulps before the triangle's vertex met the segment). The earliest
+  // exact contact of a sibling feature pair within the refinement's window of the crossing
+  // (refine_bound, where the refinement already moves times) replaces it: for outlines every
+  // other vertex/edge pair (earlier_outline_contact), for a circle the vertex at that end. If
+  // none is there, the rounded decision stands. A circle's vertex contact is checked against
+  // its adjacent edges instead (earlier_circle_edge_contact). Only near an end (near_edge_end).
   void off_feature_contact(Scheduled<T>& r) {
     if (r.contact == ContactKind::CircleCircle || !near_edge_end(r)) return;
     if (r.contact == ContactKind::CircleVertex) {
