@@ -9,9 +9,10 @@ phantom, 0 ulps).
 
 Seeds 1 to 5 (1,981 valid scenes: a few place the body overlapping the segment and are
 rejected by the reader) failed robust or certified in 2 scenes in double, 504 in float and 70 in
-long double before the exact end-of-edge decisions of issue 23 (docs/solvers.md), and in 0, 33
-and 0 after; the 33 float scenes are open there. Three of them are regression scenes
-(fixtures/regressions/make_edge_end_scenes.py).
+long double before the exact end-of-edge decisions of issue 23 (docs/solvers.md), in 0, 33 and 0
+after them, and in 0, 0 and 0 since the float corner-on-corner fixes (the overlap rule's pairs
+decided exactly, the oracle's feature pairs, a refinement window of at least 256 ulps). Nine
+of them are regression scenes (fixtures/regressions/, docs/solvers.md).
 
 Usage (python3, standard library only):
     python3 scripts/edge-end-sweep.py DIR [SEED]

@@ -9,6 +9,7 @@
 #include "pge/roots.hpp"
 #include "pge/vec2.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -120,6 +121,35 @@ enum class GrazeVerdict : std::uint8_t {
 // decided (an end itself, the corner rule's).
 enum class EdgePlace : std::uint8_t { Unknown, Before, On, After };
 
+// The vertex/edge pairs of two outlines that realise their least penetration: the pairs the
+// separating-axis overlap rule may collide (contact_polygon.hpp). Side 0 is a vertex k of body a
+// on an edge j of body b (VertexEdge), side 1 a vertex of b on an edge of a (EdgeVertex); each
+// approaching or not at now (its contact function decreasing just after now: the overlap rule
+// collides it then). A strictly convex outline has at most two vertices deepest on one axis,
+// and axes tie only by coincidence, so a few slots hold every case met.
+struct OverlapPairs {
+  struct Pair {
+    std::uint8_t side;
+    std::uint16_t k, j;
+    bool approaching;
+  };
+  static constexpr std::size_t kCapacity = 8;
+  std::array<Pair, kCapacity> pairs{};
+  std::size_t count = 0;
+
+  // False when the slots are full (the caller falls back to the rounded rule).
+  bool add(int side, std::size_t k, std::size_t j) {
+    if (count == kCapacity) return false;
+    pairs[count++] = Pair{static_cast<std::uint8_t>(side), feature_index(k), feature_index(j), false};
+    return true;
+  }
+  const Pair* find(int side, std::size_t k, std::size_t j) const {
+    for (std::size_t i = 0; i < count; ++i)
+      if (pairs[i].side == side && pairs[i].k == k && pairs[i].j == j) return &pairs[i];
+    return nullptr;
+  }
+};
+
 template <class T> struct GrazeJudge {
   // The feature pair (engine features, in the pair's a/b order) whose rounded function passes
   // within rounding of a double root; `t` (relative to now) is where to look for its crossing:
@@ -130,6 +160,13 @@ template <class T> struct GrazeJudge {
   // the exact crossing nearest its rounded root `t` (relative to now), for a root the rounded
   // rule finds within its slack of an edge's end.
   virtual EdgePlace place(ContactKind kind, std::uint16_t feature_a, std::uint16_t feature_b, const T& t) const = 0;
+  // A bound on the rounding of the pair's separating-axis values at now (the vertices' depths
+  // in front of the edges' lines, computed from positions rounded from the stored paths).
+  virtual T overlap_rounding() const = 0;
+  // The overlap rule's pairs decided from the exact paths at now, for a pair whose rounded
+  // separating-axis test lies within overlap_rounding() of touching; nothing where the exact
+  // paths do not overlap (refine::exact_overlap_pairs: the rounded rule decides there).
+  virtual std::optional<OverlapPairs> overlap_pairs() const = 0;
 
  protected:
   ~GrazeJudge() = default;

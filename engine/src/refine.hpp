@@ -27,6 +27,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 namespace pge {
 namespace refine {
@@ -542,6 +543,71 @@ EdgePlace exact_place_at_crossing(const ExactBody<T>& a, const ExactBody<T>& b, 
     (contact(mid) > 0 ? lo : hi) = mid;
   }
   return EdgePlace::Unknown;
+}
+
+// --- The separating-axis overlap rule at now, decided exactly (robust and certified).
+// The pairs of two outlines (polygons or segments) that realise their least penetration at
+// now, from the stored paths: every edge of each body is an axis, its value the least of
+// cross(vertex - edge start, e) over the other body's vertices (negative: that vertex lies
+// behind the edge's line), and the pair meets only where no axis value is positive. The least
+// penetration is the axis whose value over |e| is largest (compared squared: no square root),
+// and its pairs are its deepest vertices. Only an exact overlap is decided here: nothing (the
+// rounded rule decides, as before) when an axis separates or the pair only touches (the largest
+// value zero), since a rounded function overlapping there finds the pair's next contact only
+// through the overlap rules (a box bounced off a ramp with its vertex exactly on the line and
+// an ulp inside it in long double: the rounded function never came back above zero, and the
+// turning-overlap rule caught its return; fixtures/regressions/box-placed-on-an-incline.json);
+// nothing either when more pairs tie than OverlapPairs holds.
+template <class T>
+std::optional<OverlapPairs> exact_overlap_pairs(const ExactBody<T>& a, const ExactBody<T>& b, const Exact& now) {
+  const auto vertices = [&](const ExactBody<T>& x) {
+    const ExactVec p = x.position(now);
+    std::vector<ExactVec> v;
+    v.reserve(x.shape->vertex_count());
+    for (std::size_t k = 0; k < x.shape->vertex_count(); ++k) v.push_back(x.vertex(p, k));
+    return v;
+  };
+  const std::vector<ExactVec> at[2] = {vertices(a), vertices(b)};
+  struct Axis {
+    int side;  // 0: an edge of b against a's vertices (OverlapPairs' sides)
+    std::size_t j;
+    Exact value, length2;
+  };
+  std::vector<Axis> axes;
+  for (int side = 0; side < 2; ++side) {
+    const ExactBody<T>& q = side == 0 ? b : a;
+    const std::vector<ExactVec>& qv = at[side == 0 ? 1 : 0];
+    const std::vector<ExactVec>& pv = at[side == 0 ? 0 : 1];
+    for (std::size_t j = 0; j < qv.size(); ++j) {
+      const ExactVec e = q.edge(j);
+      Exact least = cross(pv[0] - qv[j], e);
+      for (std::size_t k = 1; k < pv.size(); ++k) {
+        const Exact c = cross(pv[k] - qv[j], e);
+        if ((c - least).sign() < 0) least = c;
+      }
+      if (least.sign() > 0) return std::nullopt;
+      axes.push_back(Axis{side, j, least, dot(e, e)});
+    }
+  }
+  // x's separation value / |e| against y's: > 0 when x's is larger (x less deep), both <= 0.
+  const auto compare = [](const Axis& x, const Axis& y) {
+    return (y.value * y.value * x.length2 - x.value * x.value * y.length2).sign();
+  };
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < axes.size(); ++i)
+    if (compare(axes[i], axes[best]) > 0) best = i;
+  if (axes[best].value.sign() == 0) return std::nullopt;
+  OverlapPairs out;
+  for (const Axis& x : axes) {
+    if (compare(x, axes[best]) != 0) continue;
+    const ExactBody<T>& q = x.side == 0 ? b : a;
+    const std::vector<ExactVec>& qv = at[x.side == 0 ? 1 : 0];
+    const std::vector<ExactVec>& pv = at[x.side == 0 ? 0 : 1];
+    const ExactVec e = q.edge(x.j);
+    for (std::size_t k = 0; k < pv.size(); ++k)
+      if ((cross(pv[k] - qv[x.j], e) - x.value).sign() == 0 && !out.add(x.side, k, x.j)) return std::nullopt;
+  }
+  return out;
 }
 
 // --- Near-grazes of line contacts, decided exactly (robust and certified).

@@ -317,7 +317,46 @@ template <class T> struct World<T>::Impl {
     EdgePlace place(ContactKind kind, std::uint16_t fa, std::uint16_t fb, const T& tau) const override {
       return w.crossing_place(lo, hi, kind, fa, fb, tau);
     }
+    T overlap_rounding() const override {
+      return T(kSiblingRoundingUlps) * std::numeric_limits<T>::epsilon() * w.rounding_reach(w.bodies[lo], w.bodies[hi]);
+    }
+    std::optional<OverlapPairs> overlap_pairs() const override { return w.exact_overlap_pairs(lo, hi); }
   };
+
+  // The overlap rule's pairs of the outlines (lo, hi) at now, from the exact paths
+  // (refine::exact_overlap_pairs), each approaching or not by its exact contact function.
+  // Counted in counts.exact_predictions.
+  std::optional<OverlapPairs> exact_overlap_pairs(BodyIndex lo, BodyIndex hi) {
+    ++counts.exact_predictions;
+    const refine::ExactBody<T> a = exact_of(bodies[lo]), b = exact_of(bodies[hi]);
+    const refine::Exact t_now = refine::Exact::of(now);
+    std::optional<OverlapPairs> out = refine::exact_overlap_pairs(a, b, t_now);
+    if (!out) return out;
+    for (std::size_t i = 0; i < out->count; ++i) {
+      OverlapPairs::Pair& x = out->pairs[i];
+      const bool vertex_of_a = x.side == 0;
+      const Scheduled<T> s = feature_pair(lo, hi, vertex_of_a ? ContactKind::VertexEdge : ContactKind::EdgeVertex,
+                                          vertex_of_a ? x.k : x.j, vertex_of_a ? x.j : x.k);
+      const std::optional<detail::exact::IntPoly> poly = refine::exact_feature_poly(a, b, s, t_now);
+      x.approaching =
+          poly && detail::exact::sign_just_after(detail::exact::derivative(*poly), detail::exact::Dyadic{}) < 0;
+    }
+    return out;
+  }
+
+  // What a pair's rounded coordinates at now are relative to: the pair's coordinate scale
+  // (pair_scale) plus each body's motion since its path was stored (its position at now is
+  // rounded from that path).
+  T rounding_reach(const Body& a, const Body& b) const {
+    using std::abs;
+    const auto travel = [&](const Body& x) {
+      if (x.fixed) return T(0);
+      const T tau = abs(now - x.t0);
+      return (abs(x.v0.x) + abs(x.v0.y) + (abs(x.acc.x) + abs(x.acc.y)) * tau) * tau;
+    };
+    const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
+    return pair_scale(a.shape, ka.p, b.shape, kb.p) + travel(a) + travel(b);
+  }
 
   static bool relative_acc_zero(const Body& a, const Body& b) {
     const Vec2<T> aa = a.fixed ? Vec2<T>{} : a.acc, ab = b.fixed ? Vec2<T>{} : b.acc;
@@ -533,15 +572,9 @@ template <class T> struct World<T>::Impl {
     const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
     const OutlineView<T> views[2] = {view_of(a.shape, ka, b.shape, kb), view_of(b.shape, kb, a.shape, ka)};
     const T window = r.time - now;
-    // What the rounded functions' coefficients are relative to: the pair's coordinates and
-    // each body's motion since its path was stored (the positions at now are rounded from it).
-    const auto travel = [&](const Body& x) {
-      if (x.fixed) return T(0);
-      const T tau = abs(now - x.t0);
-      return (abs(x.v0.x) + abs(x.v0.y) + (abs(x.acc.x) + abs(x.acc.y)) * tau) * tau;
-    };
+    // What the rounded functions' coefficients are relative to (rounding_reach).
     const T scale = pair_scale(a.shape, ka.p, b.shape, kb.p);
-    const T reach = scale + travel(a) + travel(b);
+    const T reach = rounding_reach(a, b);
     std::optional<refine::ExactBody<T>> ea, eb;
     const refine::Exact t_now = refine::Exact::of(now);
     const LineGrazes exact_judge(*this, r.lo, r.hi);
@@ -552,6 +585,7 @@ template <class T> struct World<T>::Impl {
         for (std::size_t k = 0; k < o.P.vertex_count(); ++k) {
           const std::uint16_t fa = feature_index(side == 0 ? k : j), fb = feature_index(side == 0 ? j : k);
           if (kind == r.contact && fa == r.feature_a && fb == r.feature_b) continue;
+          if (!extreme_towards(o, k, j)) continue;
           const Vec2<T> d0 = o.offset(k, j);
           if (!may_touch_first(o, k, j, d0, vertex_edge_poly(o, d0, j), window, reach, scale)) continue;
           if (!ea) {
@@ -743,10 +777,13 @@ template <class T> struct World<T>::Impl {
   // exact paths are still an ulp apart). The turning-overlap rule's contact (later than now) is
   // decided again from the exact polynomial of its feature pair and its turning point correctly
   // rounded (refined_turn).
-  // The latest time whose contacts may be exactly as early as t (kRefineWindowRelative).
+  // The latest time whose contacts may be exactly as early as t (kRefineWindowRelative, at
+  // least kRefineWindowUlps of T).
   static T refine_bound(const T& t) {
     using std::abs;
-    return t + T(kRefineWindowRelative) * std::max(T(1), abs(t));
+    static const T relative =
+        std::max(T(kRefineWindowRelative), T(kRefineWindowUlps) * std::numeric_limits<T>::epsilon());
+    return t + relative * std::max(T(1), abs(t));
   }
 
   bool refine_near_top() {
