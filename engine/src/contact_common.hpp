@@ -161,8 +161,9 @@ template <class T> struct GrazeJudge {
   // rule finds within its slack of an edge's end.
   virtual EdgePlace place(ContactKind kind, std::uint16_t feature_a, std::uint16_t feature_b, const T& t) const = 0;
   // A bound on the rounding of the pair's separating-axis values at now (the vertices' depths
-  // in front of the edges' lines, computed from positions rounded from the stored paths).
-  virtual T overlap_rounding() const = 0;
+  // in front of the edges' lines, computed from positions rounded from the stored paths), the
+  // pair's coordinate scale at now (pair_scale) given.
+  virtual T overlap_rounding(const T& scale) const = 0;
   // The overlap rule's pairs decided from the exact paths at now, for a pair whose rounded
   // separating-axis test lies within overlap_rounding() of touching; nothing where the exact
   // paths do not overlap (refine::exact_overlap_pairs: the rounded rule decides there).

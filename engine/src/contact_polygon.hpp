@@ -375,7 +375,8 @@ std::optional<PredictedContact<T>> outline_contact(SolverKind solver, const Body
   using std::abs;
   const OutlineView<T> ab = view_of(sa, ka, sb, kb);  // a's vertices against b's edges
   const OutlineView<T> ba = view_of(sb, kb, sa, ka);
-  const T rounding = grazes ? grazes->overlap_rounding() : T(0);
+  const T scale = pair_scale(sa, ka.p, sb, kb.p);
+  const T rounding = grazes ? grazes->overlap_rounding(scale) : T(0);
   const AxisTest<T> axes = largest_axis(ab, ba, rounding);
   const std::optional<T> overlap = axes.largest < T(0) ? std::optional<T>(axes.largest) : std::nullopt;
   // With depths near zero on one axis only (a pair just after its collision, or a box sliding
@@ -385,7 +386,6 @@ std::optional<PredictedContact<T>> outline_contact(SolverKind solver, const Body
   std::optional<OverlapPairs> exact;
   if (grazes && abs(axes.largest) <= rounding && axes.near_zero_axes >= 2) exact = grazes->overlap_pairs();
   const OverlapPairs* pairs = exact ? &*exact : nullptr;
-  const T scale = pair_scale(sa, ka.p, sb, kb.p);
   std::optional<PredictedContact<T>> best;
   scan_vertex_edge(solver, ab, ContactKind::VertexEdge, overlap, pairs, scale, horizon, best, grazes);
   scan_vertex_edge(solver, ba, ContactKind::EdgeVertex, overlap, pairs, scale, horizon, best, grazes);

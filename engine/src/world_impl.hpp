@@ -317,8 +317,9 @@ template <class T> struct World<T>::Impl {
     EdgePlace place(ContactKind kind, std::uint16_t fa, std::uint16_t fb, const T& tau) const override {
       return w.crossing_place(lo, hi, kind, fa, fb, tau);
     }
-    T overlap_rounding() const override {
-      return T(kSiblingRoundingUlps) * std::numeric_limits<T>::epsilon() * w.rounding_reach(w.bodies[lo], w.bodies[hi]);
+    T overlap_rounding(const T& scale) const override {
+      return T(kSiblingRoundingUlps) * std::numeric_limits<T>::epsilon() *
+             w.rounding_reach(w.bodies[lo], w.bodies[hi], scale);
     }
     std::optional<OverlapPairs> overlap_pairs() const override { return w.exact_overlap_pairs(lo, hi); }
   };
@@ -344,18 +345,17 @@ template <class T> struct World<T>::Impl {
     return out;
   }
 
-  // What a pair's rounded coordinates at now are relative to: the pair's coordinate scale
-  // (pair_scale) plus each body's motion since its path was stored (its position at now is
-  // rounded from that path).
-  T rounding_reach(const Body& a, const Body& b) const {
+  // What a pair's rounded coordinates at now are relative to: the pair's coordinate scale at now
+  // (pair_scale, the caller's) plus each body's motion since its path was stored (its position
+  // at now is rounded from that path).
+  T rounding_reach(const Body& a, const Body& b, const T& scale) const {
     using std::abs;
     const auto travel = [&](const Body& x) {
       if (x.fixed) return T(0);
       const T tau = abs(now - x.t0);
       return (abs(x.v0.x) + abs(x.v0.y) + (abs(x.acc.x) + abs(x.acc.y)) * tau) * tau;
     };
-    const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
-    return pair_scale(a.shape, ka.p, b.shape, kb.p) + travel(a) + travel(b);
+    return scale + travel(a) + travel(b);
   }
 
   static bool relative_acc_zero(const Body& a, const Body& b) {
@@ -574,7 +574,7 @@ template <class T> struct World<T>::Impl {
     const T window = r.time - now;
     // What the rounded functions' coefficients are relative to (rounding_reach).
     const T scale = pair_scale(a.shape, ka.p, b.shape, kb.p);
-    const T reach = rounding_reach(a, b);
+    const T reach = rounding_reach(a, b, scale);
     std::optional<refine::ExactBody<T>> ea, eb;
     const refine::Exact t_now = refine::Exact::of(now);
     const LineGrazes exact_judge(*this, r.lo, r.hi);
