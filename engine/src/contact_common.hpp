@@ -109,7 +109,7 @@ template <class T> bool never_decreasing(const Poly<T>& p) { return p.c[1] >= T(
 // A line contact whose rounded function comes within rounding of a double root (a graze, or a
 // near-graze: a ball touching a ceiling at the apex of its bounce) crosses zero or not by the
 // rounding of the state it was built from; robust and certified ask the exact paths instead
-// (world_impl.hpp, through refine.hpp's exact_line_graze). The judge knows the pair; nullptr (fast):
+// (world_refine.hpp, through refine.hpp's exact_line_graze). The judge knows the pair; nullptr (fast):
 // the rounded function decides.
 enum class GrazeVerdict : std::uint8_t {
   Undecided,  // not a case the exact test covers: the rounded function decides

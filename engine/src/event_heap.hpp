@@ -28,7 +28,7 @@ template <class T> struct Scheduled {
   std::uint64_t partner_version = 0;    // the partner's version when this was predicted
   bool refined = false;                 // certified: time re-derived from the exact paths (refine.hpp)
   // Not a contact: the owner, resting on the fixed body `partner`, slides off the end of that
-  // face (support slot feature_a) at `time` (resting contact, world_impl.hpp).
+  // face (support slot feature_a) at `time` (resting contact, world_rest.hpp).
   bool leave = false;
 
   bool valid() const { return lo != kNoBody; }

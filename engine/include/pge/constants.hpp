@@ -127,7 +127,7 @@ namespace pge {
 inline constexpr double kRefineWindowRelative = 0x1p-30;
 // ... and never narrower than this many ulps of the scalar: in float, 2^-30 is below one ulp
 // (2^-23 at 1), so only exact ties were re-derived and every sibling search bounded by the
-// window (world_impl.hpp, off_feature_contact) was empty (a ball at a segment's end in float,
+// window (world_refine.hpp, off_feature_contact) was empty (a ball at a segment's end in float,
 // its vertex contact kept 1 ulp after the edge's exact crossing: scripts/edge-end-sweep.py seed
 // 2, end-179; 64 ulps were not enough). Double and wider keep 2^-30 (256 ulps of double are
 // 5.7e-14).
