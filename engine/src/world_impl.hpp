@@ -170,6 +170,7 @@ template <class T> struct World<T>::Impl {
   // ---- Narrow phase (world_predict.hpp): a pair's earliest contact.
   // The earliest contact of the pair (lo < hi) from `now` to the horizon.
   std::optional<PredictedContact<T>> predict(BodyIndex lo, BodyIndex hi);
+
   // A float near-graze of two circles predicted again from their contact polynomial built in
   // double from the same stored paths: the stored floats are exact in double, so its rounding
   // is 2^29 times smaller than float's, and double's own near-graze test (2^-36, far above that
@@ -179,21 +180,25 @@ template <class T> struct World<T>::Impl {
   // (fixtures/scenes/basics/gas-1000.json, 4.4 s to 18 s; 2.7 s through double). The time is
   // rounded to float from double (refine_near_top rounds it once from the exact paths).
   std::optional<std::optional<PredictedContact<T>>> wide_circle_prediction(const Body& a, const Body& b) const;
+
   // b's position minus a's at `now`, like terms first: the stored positions cancel before the
   // displacements since each body's t0 are added, so the rounding is relative to the pair's
   // separation rather than to its distance from the origin (kb.p - ka.p rounds each position
   // first). The predicted time is then a few ulps of the clock from the exact one wherever the
   // pair is, and the refinement's walk (refine.hpp) is short.
   Vec2<T> separation(const Body& a, const Body& b) const;
+
   // A body's stored path, and the same as the exact contact functions read it (refine.hpp).
   static refine::Path<T> path_of(const Body& b) { return {&b.shape, b.fixed, b.t0, b.p0, b.v0, b.acc}; }
   static refine::ExactBody<T> exact_of(const Body& b) { return refine::exact_body(path_of(b)); }
   static bool relative_acc_zero(const Body& a, const Body& b);
   bool excluded(const Body& x, BodyIndex partner, const Body& y) const;
+
   // Two circles that pass within rounding of touching: predicted from the exact paths
   // (refine.hpp). Counted in counts.exact_predictions.
   // `overlapping`: whether the pair overlaps exactly at `now`.
   std::optional<PredictedContact<T>> exact_circle_prediction(const Body& a, const Body& b, bool& overlapping);
+
   // The first contact of a pair whose exact contact polynomial in tau = t - now is `poly`
   // (refine.hpp), the overlap rule and the turning-overlap rule (roots.hpp) included, isolated
   // by the exact solver: its time now + tau (so rounded twice) and overlap flag. Up to the
@@ -205,6 +210,7 @@ template <class T> struct World<T>::Impl {
     bool turn;  // the turning-overlap rule's contact (ExactSolver::turned)
   };
   std::optional<ExactRoot> exact_first_contact(detail::exact::IntPoly poly) const;
+
   // Offers the pair (i, j)'s earliest contact to `best`, the owner i's candidate event.
   void offer(BodyIndex i, BodyIndex j, Scheduled<T>& best);
 
@@ -212,14 +218,17 @@ template <class T> struct World<T>::Impl {
   // A scheduled contact's time, correctly rounded from the exact paths (refine.hpp); nothing if
   // no crossing is found near the predicted time.
   std::optional<T> refined_time(const Scheduled<T>& s) const;
+
   // The feature pair (fa, fb) of the contact `kind` of the pair (lo, hi), as the refinement's
   // exact functions read a scheduled contact.
   static Scheduled<T> feature_pair(BodyIndex lo, BodyIndex hi, ContactKind kind, std::uint16_t fa, std::uint16_t fb);
+
   // A line contact of the pair (lo, hi) whose rounded function passes within rounding of a
   // double root, decided from the exact paths (refine.hpp, exact_line_graze); a crossing's time
   // then correctly rounded from the exact paths, searched from `tau` (relative to now: the
   // rounded root, else the rounded minimum) and written back. Counted in counts.exact_predictions.
   GrazeVerdict line_graze(BodyIndex lo, BodyIndex hi, ContactKind kind, std::uint16_t fa, std::uint16_t fb, T& tau);
+
   // Where the line contact of the pair (lo, hi)'s feature pair lies on its edge at the exact
   // crossing nearest now + tau (its time correctly rounded first): GrazeJudge::place. Counted in
   // counts.exact_predictions.
@@ -249,15 +258,18 @@ template <class T> struct World<T>::Impl {
   // (refine::exact_overlap_pairs), each approaching or not by its exact contact function.
   // Counted in counts.exact_predictions.
   std::optional<OverlapPairs> exact_overlap_pairs(BodyIndex lo, BodyIndex hi);
+
   // What a pair's rounded coordinates at now are relative to: the pair's coordinate scale at now
   // (pair_scale, the caller's) plus each body's motion since its path was stored (its position
   // at now is rounded from that path).
   T rounding_reach(const Body& a, const Body& b, const T& scale) const;
+
   // The time of a turning-overlap contact (roots.hpp), the first local maximum of the pair's
   // exact contact polynomial after `now`: a crossing of its derivative from positive to
   // negative, correctly rounded from the exact paths like every other event time.
   // `poly`: the exact contact polynomial in tau = t - now (refine::exact_feature_poly).
   std::optional<T> refined_turn(const detail::exact::IntPoly& poly, const T& predicted) const;
+
   // The turning-overlap rule's contact, decided without the exact solver where it can be: in a
   // storm of a pair pressed together (each contact leaves it overlapping by round-off and
   // receding at rounding speed, and the Sturm chains cost 2 ms a contact) the contact function
@@ -269,6 +281,7 @@ template <class T> struct World<T>::Impl {
   // P(0) + P'(0) tau1 up to it: if that is negative the pair turns back overlapping, at m.
   // Every test is an exact sign; nothing when one fails (the exact solver decides).
   std::optional<T> concave_turn(const detail::exact::IntPoly& poly, const T& hint) const;
+
   // What deciding a scheduled contact again from the exact paths found.
   enum class Exactly : std::uint8_t {
     Contact,  // the pair's first contact, the overlap rules included, its time rounded once
@@ -285,6 +298,7 @@ template <class T> struct World<T>::Impl {
   // again from the rounded state would schedule the same contact again), where the caller keeps
   // the rounded time. `hint`: the rounded time, where the walks start.
   Exactly exact_contact(Scheduled<T>& r, const T& hint);
+
   // The bound on a rounded vertex/edge function's rounding, in ulps of its terms' magnitude
   // (may_touch_first).
   static constexpr double kSiblingRoundingUlps = 1024;
@@ -313,6 +327,7 @@ template <class T> struct World<T>::Impl {
   // (judge_root: on the edge, entering, the corner rule) replaces the scheduled contact, its
   // time correctly rounded.
   void earlier_outline_contact(Scheduled<T>& r);
+
   // Whether the scheduled contact's point (a line contact's vertex or circle centre; a
   // circle-vertex contact's centre, against the vertex's two edges) lies within a generous bound
   // on its rounding of an edge's end at its time, or at any time within the refinement's window
@@ -322,6 +337,7 @@ template <class T> struct World<T>::Impl {
   // relative motion along e over the window and two ulps of the time.
   bool near_edge_end(const Scheduled<T>& r) const;
   static bool off_edge(EdgePlace p) { return p == EdgePlace::Before || p == EdgePlace::After; }
+
   // A line contact (a vertex or a circle against an edge) whose correctly rounded crossing the
   // exact paths put beyond an end of the edge (crossing_place): the prediction's corner slack,
   // widened by the motion along a nearly tangent edge, accepted a point up to that motion
@@ -335,6 +351,7 @@ template <class T> struct World<T>::Impl {
   // none is there, the rounded decision stands. A circle's vertex contact is checked against
   // its adjacent edges instead (earlier_circle_edge_contact). Only near an end (near_edge_end).
   void off_feature_contact(Scheduled<T>& r);
+
   // A circle scheduled against a vertex whose rounded prediction put its contact with an
   // adjacent edge just beyond the edge's end (a circle aimed at a segment's end: its edge and
   // end contact functions meet tangentially there, and rounding picks either; the edge's is
@@ -342,9 +359,11 @@ template <class T> struct World<T>::Impl {
   // scripts/edge-end-sweep.py): each adjacent edge's exact crossing before the scheduled time
   // whose point lies strictly inside the edge (crossing_place) replaces it.
   void earlier_circle_edge_contact(Scheduled<T>& r);
+
   // Whether the scheduled contact's point lies on its features at its time (in T, as the
   // prediction accepts it): the circle's centre or the vertex projects onto the edge.
   bool on_feature(const Scheduled<T>& s) const;
+
   // Exact times for certified events (refine.hpp). A prediction from the rounded state can be
   // off by hundreds of ulps, so the queue's order near its top is not the exact order: before
   // the top event is processed, it and every unrefined contact scheduled within
@@ -358,6 +377,7 @@ template <class T> struct World<T>::Impl {
   // least kRefineWindowUlps of T).
   static T refine_bound(const T& t);
   bool refine_near_top();
+
   // Whether a contact scheduled at the horizon is a collision rather than a touch: two circles
   // are asked of the exact polynomial (a double root inside its window is no root), where a
   // rounded approach test cannot see relative speeds of rounding size; other pairs are asked
@@ -371,6 +391,7 @@ template <class T> struct World<T>::Impl {
   // crossings, global bodies, and each body's events in the heap.
   // Calls f(j) for every body j != i that i is predicted against (see the broad phase above).
   template <class F> void for_candidates(BodyIndex i, F f);
+
   // Calls f(j) for the bodies j != i in the 3x3 cells around `c`, less those also around
   // `except` (a cell, or kGlobal), fixed bodies once, in the grid's order. The candidates are
   // gathered and their Body lines prefetched first: with 1e5 bodies they are scattered over
@@ -379,34 +400,42 @@ template <class T> struct World<T>::Impl {
   template <class F> void visit_cells(BodyIndex i, std::uint32_t c, std::uint32_t except, F& f);
   void prefetch_cells(BodyIndex i) const;
   void prefetch_candidates(BodyIndex i) const;
+
   // The two cache lines of a Body that a prediction of two circles reads (see Body).
   static void prefetch_hot(const Body& b);
   void next_scan();
+
   // A fixed body registered in several cells (`shared`) is offered once per scan.
   template <class F> void visit_once(BodyIndex i, BodyIndex j, bool shared, F& f);
   void reschedule(BodyIndex i);
+
   // The grid for this scene, or none (grid_on false): the cell's body radius R is the largest
   // reach among the moving bodies no larger than 4 times their median reach; larger bodies are
   // global. The grid covers the moving bodies' positions and the fixed bodies of comparable
   // extent, two cells beyond, with at most 16 cells per moving body (larger cells otherwise).
   void setup_grid(BroadPhase mode);
+
   // A fixed body's bounding box (lo x, lo y, hi x, hi y), in double.
   static std::array<double, 4> fixed_box(const Body& b);
+
   // Takes body i out of the grid for good: it becomes every body's candidate and they its.
   // The caller reschedules it (a full scan) if it is moving.
   void make_global(BodyIndex i);
+
   // The time of moving body i's next cell crossing from time `from` (its position then is
   // inside its cell's exit box; never() if none before the horizon or if it is global), or
   // makes it global (and answers never()) where double cell arithmetic cannot be trusted to
   // an eighth of the margin until then: its position evaluated in T and in double, and the
   // crossing's time rounded to T, each off by at most a few ulps of the terms' magnitudes.
   T crossing_time(BodyIndex i, const T& from);
+
   // Moving body i's crossing at `at`: it moves to the cell it is in then, and is predicted
   // against the bodies around that cell that were not around the old one. No motion changes, so
   // nothing else is predicted again, and the predictions are made from `now` (the last event's
   // time, at or before `at`), which the pair's paths are known from: they cannot touch before
   // `at`, where they were not neighbours.
   void cross(BodyIndex i, const T& at);
+
   // Initial schedule: each pair predicted once, offered to both of its bodies (with the grid:
   // each moving body's candidates, a pair of moving bodies predicted from both sides).
   void schedule_all();
@@ -420,29 +449,35 @@ template <class T> struct World<T>::Impl {
   // speed within kRestHeightUlps ulps of m's speed, the rounding of its velocity, so that no
   // energy an elastic bounce would keep is taken away.
   T rest_speed(const Body& m, BodyIndex f, const T& acc_normal) const;
+
   // The face of fixed body `f` whose outward normal is (within kRestNormalTolerance) the unit
   // normal `n` and which holds the contact point; nothing when the contact is on a vertex only.
   std::optional<Support> face_of(BodyIndex f, const Vec2<T>& n, const Vec2<T>& point) const;
+
   // A resting body's contact interval along the face: a circle touches at its centre's
   // projection; a polygon along its vertices lowest towards the face.
   static void contact_span(const Body& m, Support& s);
+
   // Adjacent times tried past a leave's rounded root before it is taken as it is.
   static constexpr int kLeaveSteps = 64;
 
   // When a resting body's contact interval leaves its face (it slides past an end), or nothing
   // before the horizon. Along the face, s(t) = (p(t) - origin) . u is at most quadratic.
   std::optional<T> leave_time(const Body& m, const Support& s) const;
+
   // Which of a body's faces hold it, from its field acceleration: the faces pressed with a
   // non-negative reaction (at most two constraints in 2-D, tried from none to both), the path's
   // acceleration without their components, and its velocity without its normal components.
   // Faces that do not press are dropped.
   void resolve_supports(Body& m);
+
   // After a collision changed moving body m's velocity (rebased to now): faces it rested on and
   // now leaves or is pushed into by more than a rest speed stop holding it (a push into a face
   // is the face's own contact, found at once by the next prediction); then, if the contact was
   // with a fixed face that presses it and its bounce off that face would be rounding noise, it
   // rests on that face too.
   void update_rest(BodyIndex mi, BodyIndex partner, const Vec2<T>& normal_to_m, const Vec2<T>& point);
+
   // Whether fixed body j continues a face that the resting body m slides on: an edge of j on the
   // face's line, both its ends exactly (cross(x - origin, u) == 0 in T: exact for axis-aligned
   // faces; a tilted face's rounded direction rarely passes), running the same way, so with the
@@ -452,11 +487,13 @@ template <class T> struct World<T>::Impl {
   // deep struck the next tile's corner in a storm of 3e-8 impulses). The oracle skips the same
   // pairs (oracle/src/search.cpp, flush_with_support).
   bool continues_support(const Body& m, const Body& j) const;
+
   // The fixed face that continues `old` past the end the resting body m is leaving it by (floor
   // tiles, boxes side by side): the same outward normal, holding the end point, its line through
   // that point within the rounding of m's position (kRestHeightUlps ulps of its coordinate
   // scale; a step is a real contact, left to the predictions). Nothing if there is none.
   std::optional<Support> continuing_face(BodyIndex mi, const Support& old);
+
   // A resting body slides off its face's end: the face stops holding it, and a face that
   // continues it holds it instead (without this a ball crossing the joint of two collinear
   // segments collided with the first one's end in a storm of zero impulses: the contact point an
@@ -467,6 +504,7 @@ template <class T> struct World<T>::Impl {
   bool approaching(const Scheduled<T>& s) const;
   void note_storm(BodyIndex i, BodyIndex partner);
   void collide(const Scheduled<T>& s);
+
   // The length at which a pair's contact is rounded, in units of epsilon: its largest coordinate
   // magnitude (vertices included), plus how far it closes in the time it takes the clock to
   // move by its relative precision (an event time t is rounded to ulp(t), in which the pair
@@ -501,6 +539,7 @@ template <class T> struct World<T>::Impl {
 #endif
   std::optional<TunnelWatch<T>> tunnel_watch;
   bool tunnels_finished = false;
+
   // Body i's motion is about to change at `now` (or the run ends). Its path since t0 is tested
   // (rebase() moves t0 only when the motion changes); a moving segment has no interior point.
   void watch_path(BodyIndex i);
