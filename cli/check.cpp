@@ -181,16 +181,16 @@ int exit_code_of(const SceneCheck& c) {
 // What is printed and written across scenes.
 struct Output {
   bool summaries = true;
-  std::ofstream json;
+  std::optional<OutputFile> json;
   bool first_json = true;
   std::vector<TableRow> table;
 };
 
 void report_run(const std::string& file, const LoadedScene& loaded, const SceneCheck& c, Output& out) {
   if (out.summaries) print_summary(c, loaded.scene);
-  if (out.json.is_open()) {
-    out.json << (out.first_json ? "\n" : ",\n");
-    write_json(out.json, c, loaded.scene);
+  if (out.json) {
+    out.json->stream() << (out.first_json ? "\n" : ",\n");
+    write_json(out.json->stream(), c, loaded.scene);
     out.first_json = false;
   }
   if (c.expect.enforcement == Enforcement::Full) {
@@ -286,12 +286,12 @@ int check_command(const CheckOptions& opt) {
   Output out;
   out.summaries = !opt.quiet && !(opt.table && opt.table_out.empty());
   if (!opt.json.empty()) {
-    out.json.open(opt.json);
-    if (!out.json) {
+    out.json.emplace(opt.json);
+    if (!out.json->is_open()) {
       fmt::print(stderr, "pge check: cannot write {}\n", opt.json);
       return kExitOutput;
     }
-    out.json << "{\"format\":\"pge-check/1\",\"scenes\":[";
+    out.json->stream() << "{\"format\":\"pge-check/1\",\"scenes\":[";
   }
   int exit_code = kExitOk;
   for (std::size_t k = 0; k < files.size(); ++k) {
@@ -303,10 +303,9 @@ int check_command(const CheckOptions& opt) {
     fmt::print(stderr, "pge check: error writing {}\n", what);
     if (exit_code == kExitOk) exit_code = kExitOutput;
   };
-  if (out.json.is_open()) {
-    out.json << "\n]}\n";
-    out.json.close();
-    if (!out.json) output_failed(opt.json);
+  if (out.json) {
+    out.json->stream() << "\n]}\n";
+    if (!out.json->close()) output_failed(opt.json);
   }
   if (opt.table) {
     if (opt.table_out.empty()) {

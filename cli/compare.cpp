@@ -135,14 +135,9 @@ void judge_row(Row& r, const Scene& scene) {
 int write_json(const std::vector<Row>& rows, const std::string& path) {
   nlohmann::json all = nlohmann::json::array();
   for (const Row& r : rows) all.push_back(to_json(r));
-  if (path == "-") {
-    pge_stdout() << all.dump(2) << '\n' << std::flush;
-    return kExitOk;
-  }
-  std::ofstream out(path);
-  out << all.dump(2) << '\n';
-  out.close();
-  if (!out) {
+  OutputFile out(path);
+  out.stream() << all.dump(2) << '\n';
+  if (!out.close()) {
     fmt::print(stderr, "pge compare: cannot write {}\n", path);
     return kExitOutput;
   }
@@ -221,7 +216,7 @@ int compare_command(const CompareOptions& opt) {
     r.outcome.trace.reset();  // a gas at 1000 Hz holds a million states a simulated second
   }
 
-  if (!opt.quiet && opt.json != "-") print_table(opt, scene, horizon, rows);
+  if (!opt.quiet && !OutputFile::names_stdout(opt.json)) print_table(opt, scene, horizon, rows);
   if (!opt.json.empty())
     if (const int code = write_json(rows, opt.json); code != kExitOk) return code;
   const bool pge_ran = std::any_of(rows.begin(), rows.end(), [](const Row& r) {

@@ -3,6 +3,7 @@
 #include "check_report.hpp"
 #include "exit_codes.hpp"
 #include "scene_files.hpp"
+#include "stdout.hpp"
 
 #include "pge/judge.hpp"
 #include "pge/trace_io.hpp"
@@ -124,11 +125,12 @@ Json steps_json(const Trace& trace, const oracle::StepJudgement& j) {
 
 int write_json_file(const JudgeCommandOptions& opt, const LoadedScene& loaded, const Trace& trace,
                     const oracle::TraceJudgement& j) {
-  std::ofstream out(opt.json);
-  if (!out) {
+  OutputFile file(opt.json);
+  if (!file.is_open()) {
     fmt::print(stderr, "pge judge: cannot write {}\n", opt.json);
     return kExitOutput;
   }
+  std::ostream& out = file.stream();
   const bool steps = trace.mode == TraceMode::Steps;
   const Json head = {{"format", "pge-judge/1"}, {"trace", opt.trace},  {"scene", loaded.path},
                      {"engine", trace.engine},  {"mode", steps ? "steps" : "events"}};
@@ -141,8 +143,7 @@ int write_json_file(const JudgeCommandOptions& opt, const LoadedScene& loaded, c
     write_json(out, as_check(loaded, trace, j.events), loaded.scene);
   }
   out << "}\n";
-  out.close();
-  if (!out) {
+  if (!file.close()) {
     fmt::print(stderr, "pge judge: error writing {}\n", opt.json);
     return kExitOutput;
   }

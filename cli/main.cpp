@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
       ->check(kNonNegative);
   run_cmd->add_option("--trace", run.trace, "Write the event trace of the (single) scene to FILE as JSON Lines");
   run_cmd->add_option("--trace-dir", run.trace_dir, "Write each scene's trace to DIR/<scene>.jsonl (scenes whose file names are the same: DIR/<folder>-<scene>.jsonl)");
-  run_cmd->add_option("--json", run.json_summary, "Also write the summaries as a JSON array to FILE");
+  run_cmd->add_option("--json", run.json_summary, "Also write the summaries as a JSON array to FILE (-: stdout, instead of the summaries)");
   run_cmd->add_option("--scalar", scalar, "Number type: float, double, long-double, quad")
       ->check(CLI::IsMember({"float", "double", "long-double", "quad"}));
   std::string solver;
@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
       check_cmd->add_option("--table-out", check.table_out, "Write the --table table to FILE (implies --table; the summaries still print)")
           ->type_name("FILE");
   check_solver->excludes(check_all)->excludes(check_table)->excludes(check_table_out);
-  check_cmd->add_option("--json", check.json, "Write the summaries and every event's verdict to FILE (JSON)");
+  check_cmd->add_option("--json", check.json, "Write the summaries and every event's verdict to FILE (JSON; -: stdout, instead of the summaries)");
   check_cmd->add_flag("--no-filter", check.no_filter,
                      "Turn off the oracle's pair filters (its spatial filter and the interval test of each feature "
                      "pair): every pair of bodies is solved exactly at every event (slow: O(N^2) per event; same verdicts)");
@@ -350,7 +350,7 @@ int main(int argc, char** argv) {
       "  with \"stop\": \"reached-until\" makes a contact left before its time a miss.\n") + kExitCodeHelp);
   judge_cmd->add_option("trace", judge.trace, "A trace file (pge-trace/2 JSON Lines, events or steps mode)")->required();
   judge_cmd->add_option("--scene", judge.scene, "The scene the trace is a run of (pge-scene/1 JSON)")->required();
-  judge_cmd->add_option("--json", judge.json, "Also write the summary and every verdict to FILE (JSON, pge-judge/1)");
+  judge_cmd->add_option("--json", judge.json, "Also write the summary and every verdict to FILE (JSON, pge-judge/1; -: stdout, instead of the summary)");
   judge_cmd->add_option("--overlap-bound", judge.overlap_bound,
                         "Steps mode: an unreported overlap deeper than this fraction of the pair's contact distance is a miss")
       ->check(kPositive)
@@ -392,12 +392,20 @@ int main(int argc, char** argv) {
         run.solver = kind;
       }
       pge::parse_broad_phase(broad_phase, run.broad_phase);
+      if (OutputFile::names_stdout(run.json_summary)) run.quiet = true;  // stdout holds the JSON alone
       if (!run.progress) run.progress = isatty(fileno(stderr)) != 0 && !run.quiet;
       return run_command(run);
     }
     if (check_cmd->parsed()) {
       if (!check.table_out.empty()) check.table = true;
       if (check.table) check.all_solvers = true;
+      if (OutputFile::names_stdout(check.json)) {
+        if (check.table && check.table_out.empty()) {
+          fmt::print(stderr, "pge: check: --json - and --table both write to stdout: give the table a file (--table-out)\n");
+          return kExitUsage;
+        }
+        check.quiet = true;  // stdout holds the JSON alone
+      }
       if (!check.progress) check.progress = isatty(fileno(stderr)) != 0 && !check.quiet;
       return check_command(check);
     }
@@ -421,7 +429,10 @@ int main(int argc, char** argv) {
     }
     if (render_cmd->parsed()) return render_command(render);
     if (compare_cmd->parsed()) return compare_command(compare);
-    if (judge_cmd->parsed()) return judge_command(judge);
+    if (judge_cmd->parsed()) {
+      if (OutputFile::names_stdout(judge.json)) judge.quiet = true;  // stdout holds the JSON alone
+      return judge_command(judge);
+    }
     if (fuzz_cmd->parsed()) {
       unsigned shard = 0, shards = 0;
       if (!parse_shard(fuzz_shard, shard, shards)) {

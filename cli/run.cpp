@@ -2,6 +2,7 @@
 
 #include "exit_codes.hpp"
 #include "scene_files.hpp"
+#include "stdout.hpp"
 #include "trace.hpp"
 
 #include "pge/constants.hpp"
@@ -266,9 +267,9 @@ int run_command(const RunOptions& opt) {
     }));
   }
   if (!opt.json_summary.empty()) {
-    std::ofstream out(opt.json_summary);
-    out << all.dump(2) << '\n';
-    if (!out) {
+    OutputFile out(opt.json_summary);
+    out.stream() << all.dump(2) << '\n';
+    if (!out.close()) {
       fmt::print(stderr, "pge run: cannot write {}\n", opt.json_summary);
       fail(kExitOutput);
     }

@@ -28,4 +28,18 @@ std::ostream& pge_stdout() {
   return out;
 }
 
+OutputFile::OutputFile(const std::string& path) : to_stdout_(names_stdout(path)) {
+  if (!to_stdout_) file_.open(path);
+}
+
+bool OutputFile::is_open() const { return to_stdout_ || file_.is_open(); }
+
+std::ostream& OutputFile::stream() { return to_stdout_ ? pge_stdout() : file_; }
+
+bool OutputFile::close() {
+  if (to_stdout_) return static_cast<bool>(pge_stdout().flush());
+  file_.close();
+  return static_cast<bool>(file_);
+}
+
 }  // namespace pge::cli
