@@ -401,7 +401,7 @@ int main(int argc, char** argv) {
       if (check.table) check.all_solvers = true;
       if (OutputFile::names_stdout(check.json)) {
         if (check.table && check.table_out.empty()) {
-          fmt::print(stderr, "pge: check: --json - and --table both write to stdout: give the table a file (--table-out)\n");
+          fmt::print(stderr, "pge check: --json - and --table both write to stdout: give the table a file (--table-out)\n");
           return kExitUsage;
         }
         check.quiet = true;  // stdout holds the JSON alone
