@@ -1,0 +1,417 @@
+// Rigorous interval arithmetic in a floating-point type B (float, double, long double, Quad), and
+// enclosures of sin and cos with proven error terms: what the rotating contact solver
+// (roots_rotating.hpp) evaluates its contact functions in, so that a sign it relies on is a sign
+// of the exact function of the stored paths.
+//
+// Rounding. Each bound is rounded to nearest (B's arithmetic, never a change of the FPU mode) and
+// moved one representable value outward only when its exact rounding error points inward
+// (Rounding below): the result is what directed rounding gives. This needs IEEE arithmetic without
+// contraction or extended evaluation (the build's -ffp-contract=off, SSE2); Quad's software
+// arithmetic rounds correctly too. Exact results, zeros among them, stay unwidened: widening
+// exact zeros would fill the enclosures with subnormals, which x86 handles in slow microcode.
+// NaN bounds widen to the whole line.
+//
+// sin and cos. x is reduced to r = x - k pi/2 with |r| <~ pi/4, pi/2 split in three parts so that
+// k P1 and k P2 are exact for |k| < 2^(p - p/2 - 1) (Cody and Waite, "Software Manual for the
+// Elementary Functions", 1980, ch. 8) and the last part an enclosure; then Taylor polynomials in
+// r^2 with enclosures of the reciprocal factorials and the Lagrange remainder
+// |r|^(n+1) / (n+1)! added as an interval. Over a wide interval the range is the hull of the two
+// end values and of +-1 at every extremum k pi/2 it may contain (decided from the reductions of
+// the ends, conservatively: a doubtful extremum is included).
+#pragma once
+
+#include "pge/scalar.hpp"
+
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/next.hpp>
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+namespace pge::detail {
+
+template <class B> B interval_next_up(const B& x) {
+  if (!(x < std::numeric_limits<B>::infinity())) return x;  // +inf or NaN
+  if (x == B(0)) return std::numeric_limits<B>::denorm_min();
+  if constexpr (std::is_same_v<B, double> || std::is_same_v<B, float>) {
+    using U = std::conditional_t<std::is_same_v<B, double>, std::uint64_t, std::uint32_t>;
+    const U bits = std::bit_cast<U>(x);
+    return std::bit_cast<B>(x > B(0) ? U(bits + 1) : U(bits - 1));
+  } else if constexpr (std::is_floating_point_v<B>) {
+    return std::nextafter(x, std::numeric_limits<B>::infinity());
+  } else {
+    if (x == std::numeric_limits<B>::max()) return std::numeric_limits<B>::infinity();
+    return boost::math::float_next(x);
+  }
+}
+template <class B> B interval_next_down(const B& x) { return -interval_next_up<B>(-x); }
+
+// Directed rounding emulated in round-to-nearest: the bound on the exact result of a + b, x * y
+// or a / d from the rounded result r and the sign of its exact error (TwoSum, Knuth, TAOCP vol. 2,
+// 4.2.2; the error of a product or quotient from one fused multiply-add, exact when no bound is
+// near underflow). An exact result is not widened, so intervals stay as tight as with the FPU in
+// directed modes. Past underflow or overflow the bounds widen by one ulp each way instead.
+template <class B> struct Rounding {
+  static constexpr bool builtin = std::is_floating_point_v<B>;
+  // Below this the error terms may underflow; past max() / 2 the sums may overflow.
+  static B tiny() { return std::numeric_limits<B>::min() / std::numeric_limits<B>::epsilon() * B(8); }
+  static bool ordinary(const B& r) {
+    const B m = r < B(0) ? B(-r) : r;
+    return m > tiny() && m < std::numeric_limits<B>::max() / B(4);
+  }
+  // sign(a + b - r)
+  static int sum_error_sign(const B& a, const B& b, const B& r) {
+    const B bb = r - a;
+    const B e = (a - (r - bb)) + (b - bb);
+    return (e > B(0)) - (e < B(0));
+  }
+  // sign(x y - r): Dekker's exact product (Dekker, "A floating-point technique for extending the
+  // available precision", Numer. Math. 18, 1971) for the built-in types, a wide product for Quad.
+  static int product_error_sign(const B& x, const B& y, const B& r) {
+    if constexpr (builtin) {
+      constexpr int half = (std::numeric_limits<B>::digits + 1) / 2;
+      const B split = B(std::uint64_t{1} << half) + B(1);
+      auto parts = [&](const B& a, B& hi, B& lo) {
+        const B c = split * a;
+        hi = c - (c - a);
+        lo = a - hi;
+      };
+      B xh, xl, yh, yl;
+      parts(x, xh, xl);
+      parts(y, yh, yl);
+      const B e = (((xh * yh - r) + xh * yl) + xl * yh) + xl * yl;
+      return (e > B(0)) - (e < B(0));
+    } else {
+      using Exact = boost::multiprecision::number<
+          boost::multiprecision::cpp_bin_float<2 * std::numeric_limits<B>::digits + 2,
+                                               boost::multiprecision::digit_base_2>,
+          boost::multiprecision::et_off>;
+      const Exact e = Exact(x) * Exact(y) - Exact(r);
+      return (e > 0) - (e < 0);
+    }
+  }
+  // Whether Dekker's splitting of x and y cannot overflow.
+  static bool splittable(const B& x, const B& y) {
+    const B limit = std::numeric_limits<B>::max() * std::numeric_limits<B>::epsilon() / B(8);
+    return (x < B(0) ? B(-x) : x) < limit && (y < B(0) ? B(-y) : y) < limit;
+  }
+  // sign(a / d - r) for d > 0: the sign of a - r d
+  static int quotient_error_sign(const B& a, const B& d, const B& r) { return -product_error_sign(r, d, a); }
+
+  static B down(const B& r, int error_sign) {
+    if (r == B(0) && error_sign == 0) return r;
+    if (!ordinary(r)) return interval_next_down(r);
+    return error_sign < 0 ? interval_next_down(r) : r;
+  }
+  static B up(const B& r, int error_sign) {
+    if (r == B(0) && error_sign == 0) return r;
+    if (!ordinary(r)) return interval_next_up(r);
+    return error_sign > 0 ? interval_next_up(r) : r;
+  }
+  static B add_down(const B& a, const B& b) { const B r = a + b; return down(r, sum_error_sign(a, b, r)); }
+  static B add_up(const B& a, const B& b) { const B r = a + b; return up(r, sum_error_sign(a, b, r)); }
+  static B mul_down(const B& x, const B& y) {
+    if (x == B(0) || y == B(0)) return B(0);
+    const B r = x * y;
+    return down(r, ordinary(r) && splittable(x, y) ? product_error_sign(x, y, r) : -1);
+  }
+  static B mul_up(const B& x, const B& y) {
+    if (x == B(0) || y == B(0)) return B(0);
+    const B r = x * y;
+    return up(r, ordinary(r) && splittable(x, y) ? product_error_sign(x, y, r) : 1);
+  }
+  static B div_down(const B& a, const B& d) {
+    if (a == B(0)) return B(0);
+    const B r = a / d;
+    return down(r, ordinary(r) && splittable(r, d) ? quotient_error_sign(a, d, r) : -1);
+  }
+  static B div_up(const B& a, const B& d) {
+    if (a == B(0)) return B(0);
+    const B r = a / d;
+    return up(r, ordinary(r) && splittable(r, d) ? quotient_error_sign(a, d, r) : 1);
+  }
+};
+
+template <class B> class Interval {
+ public:
+  Interval() : lo_(0), hi_(0) {}
+  Interval(const B& v) : lo_(v), hi_(v) {}  // NOLINT: values of B are exact
+  Interval(const B& lo, const B& hi) : lo_(lo), hi_(hi) {
+    if (!(lo_ <= hi_)) *this = whole();  // NaN, or bounds crossed by an overflow
+  }
+  static Interval whole() {
+    Interval r;
+    r.lo_ = -std::numeric_limits<B>::infinity();
+    r.hi_ = std::numeric_limits<B>::infinity();
+    return r;
+  }
+
+  const B& lo() const { return lo_; }
+  const B& hi() const { return hi_; }
+  B mid() const { return lo_ / B(2) + hi_ / B(2); }
+  B width() const { return hi_ - lo_; }
+  B magnitude() const { return std::max(abs(lo_), abs(hi_)); }
+  bool positive() const { return lo_ > B(0); }  // certainly > 0
+  bool negative() const { return hi_ < B(0); }  // certainly < 0
+  bool contains(const B& x) const { return lo_ <= x && x <= hi_; }
+  bool contains_zero() const { return contains(B(0)); }
+
+  friend Interval operator-(const Interval& a) { return raw(-a.hi_, -a.lo_); }
+  friend Interval operator+(const Interval& a, const Interval& b) {
+    return raw(R::add_down(a.lo_, b.lo_), R::add_up(a.hi_, b.hi_));
+  }
+  friend Interval operator-(const Interval& a, const Interval& b) {
+    return raw(R::add_down(a.lo_, -b.hi_), R::add_up(a.hi_, -b.lo_));
+  }
+  friend Interval operator*(const Interval& a, const Interval& b) {
+    // By the signs of the factors (nine cases, two products each except when both straddle 0).
+    const B &al = a.lo_, &ah = a.hi_, &bl = b.lo_, &bh = b.hi_;
+    if (al >= B(0)) {
+      if (bl >= B(0)) return raw(R::mul_down(al, bl), R::mul_up(ah, bh));
+      if (bh <= B(0)) return raw(R::mul_down(ah, bl), R::mul_up(al, bh));
+      return raw(R::mul_down(ah, bl), R::mul_up(ah, bh));
+    }
+    if (ah <= B(0)) {
+      if (bl >= B(0)) return raw(R::mul_down(al, bh), R::mul_up(ah, bl));
+      if (bh <= B(0)) return raw(R::mul_down(ah, bh), R::mul_up(al, bl));
+      return raw(R::mul_down(al, bh), R::mul_up(al, bl));
+    }
+    if (bl >= B(0)) return raw(R::mul_down(al, bh), R::mul_up(ah, bh));
+    if (bh <= B(0)) return raw(R::mul_down(ah, bl), R::mul_up(al, bl));
+    return raw(std::min(R::mul_down(al, bh), R::mul_down(ah, bl)),
+               std::max(R::mul_up(al, bl), R::mul_up(ah, bh)));
+  }
+  // a b + c with each bound widened one ulp outward, without the exact error terms: cheaper, and
+  // as tight where the result is added to far larger terms (the tails of the Taylor series).
+  friend Interval loose_mul_add(const Interval& a, const Interval& b, const Interval& c) {
+    B lo = std::numeric_limits<B>::infinity(), hi = -lo;
+    for (const B& x : {a.lo_, a.hi_}) {
+      for (const B& y : {b.lo_, b.hi_}) {
+        const B r = x * y;
+        lo = std::min(lo, r);
+        hi = std::max(hi, r);
+      }
+    }
+    return raw(interval_next_down(interval_next_down(lo) + c.lo_),
+               interval_next_up(interval_next_up(hi) + c.hi_));
+  }
+  // Division by a positive value of B.
+  friend Interval operator/(const Interval& a, const B& d) {
+    return raw(R::div_down(a.lo_, d), R::div_up(a.hi_, d));
+  }
+  Interval square() const {
+    const B a = std::min(abs(lo_), abs(hi_)), b = std::max(abs(lo_), abs(hi_));
+    if (lo_ >= B(0) || hi_ <= B(0)) return raw(R::mul_down(a, a), R::mul_up(b, b));
+    return raw(B(0), R::mul_up(b, b));
+  }
+  friend Interval hull(const Interval& a, const Interval& b) {
+    return raw(std::min(a.lo_, b.lo_), std::max(a.hi_, b.hi_));
+  }
+  // The common part, or `a` when they do not meet (both enclose one value: they always meet
+  // unless a bound is wrong, and then the wider answer is the safe one).
+  friend Interval intersect(const Interval& a, const Interval& b) {
+    const B lo = std::max(a.lo_, b.lo_), hi = std::min(a.hi_, b.hi_);
+    return lo <= hi ? raw(lo, hi) : a;
+  }
+  Interval clamp(const B& lo, const B& hi) const {
+    return raw(std::max(lo_, lo), std::min(hi_, hi));
+  }
+
+ private:
+  using R = Rounding<B>;
+  static B abs(const B& x) { return x < B(0) ? B(-x) : x; }
+  static Interval raw(const B& lo, const B& hi) {
+    Interval r;
+    r.lo_ = lo;
+    r.hi_ = hi;
+    if (!(r.lo_ <= r.hi_)) r = whole();
+    return r;
+  }
+  B lo_, hi_;
+};
+
+// Enclosures of sin and cos over one interval of arguments.
+template <class B> struct SinCos {
+  Interval<B> sin, cos;
+};
+
+template <class B> class TrigTables {
+ public:
+  static const TrigTables& get() {
+    static const TrigTables tables;
+    return tables;
+  }
+
+  // The largest |x| reduced with k P1, k P2 exact; past it sin and cos are [-1, 1].
+  B reduce_limit;
+  B p1, p2;            // pi/2 = p1 + p2 + p3, p1 and p2 with half of B's digits
+  Interval<B> p3;
+  B two_over_pi;       // rounded: picks k, any k works (the reduction is exact whatever it is)
+  Interval<B> two_pi;  // for "wider than a turn"
+  // sin r = r (s[0] + s[1] r^2 + ... ) + E, cos r = c[0] + c[1] r^2 + ... + E, with the
+  // coefficients' enclosures and the number of terms such that the remainder for |r| <= 0.8 is
+  // below B's epsilon / 64.
+  std::vector<Interval<B>> sin_coef, cos_coef;
+  // For |r| <= reduced_max, the terms left out: r^(2n+3) / (2n+3)! and r^(2n+2) / (2n+2)!
+  // (n + 1 terms kept) bound the rest of these alternating series with decreasing terms.
+  B reduced_max;
+  B sin_remainder, cos_remainder;
+
+ private:
+  using High = boost::multiprecision::cpp_bin_float_100;  // 332 bits: far past Quad's 113
+
+  static Interval<B> enclose(const High& v) {
+    const B r = static_cast<B>(v);
+    return Interval<B>(interval_next_down(r), interval_next_up(r));
+  }
+  // v truncated to `bits` significant bits (v > 0).
+  static High truncate_bits(const High& v, int bits) {
+    int e = 0;
+    const High m = boost::multiprecision::frexp(v, &e);  // v = m 2^e, m in [0.5, 1)
+    return boost::multiprecision::ldexp(boost::multiprecision::trunc(boost::multiprecision::ldexp(m, bits)),
+                                        e - bits);
+  }
+
+  TrigTables() {
+    const int digits = std::numeric_limits<B>::digits;
+    const int half = digits / 2;
+    const High half_pi = boost::math::constants::half_pi<High>();
+    const High h1 = truncate_bits(half_pi, half);
+    const High h2 = truncate_bits(half_pi - h1, half);
+    p1 = static_cast<B>(h1);
+    p2 = static_cast<B>(h2);
+    p3 = enclose(half_pi - h1 - h2);
+    // k P1 is exact while k has at most digits - half bits; x ~ k pi / 2.
+    reduce_limit = static_cast<B>(boost::multiprecision::ldexp(High(1), digits - half - 2));
+    two_over_pi = static_cast<B>(2 / boost::math::constants::pi<High>());
+    two_pi = enclose(boost::math::constants::two_pi<High>());
+
+    const High tiny = boost::multiprecision::ldexp(High(1), -digits - 6);
+    const High r_max = High(0.8);  // > pi/4 + the reduction's error
+    reduced_max = static_cast<B>(r_max);
+    if (High(reduced_max) > r_max) reduced_max = interval_next_down(reduced_max);
+    // sin: terms (-1)^n r^(2n+1) / (2n+1)!, cos: (-1)^n r^(2n) / (2n)!; each table stops when the
+    // next term's bound at r_max is below tiny, and that bound is the remainder.
+    const auto taylor = [&](int first_power, std::vector<Interval<B>>& coef, B& remainder) {
+      High fact = 1;  // (2n + first_power)!
+      for (int n = 0;; ++n) {
+        coef.push_back(enclose((n % 2 == 0 ? 1 : -1) / fact));
+        const int power = 2 * n + first_power + 2;
+        const High next = fact * (power - 1) * power;
+        const High bound = boost::multiprecision::pow(r_max, power) / next;
+        if (bound < tiny) {
+          remainder = interval_next_up(static_cast<B>(bound));
+          return;
+        }
+        fact = next;
+      }
+    };
+    taylor(1, sin_coef, sin_remainder);
+    taylor(0, cos_coef, cos_remainder);
+  }
+};
+
+// The reduction of one value x: x = k pi/2 + r, r enclosed (|r| <= pi/4 + a few ulps).
+template <class B> struct Reduced {
+  long long k = 0;
+  Interval<B> r;
+  bool ok = true;  // false past TrigTables::reduce_limit (or not finite)
+};
+
+template <class B> Reduced<B> reduce_half_pi(const B& x) {
+  const TrigTables<B>& tab = TrigTables<B>::get();
+  Reduced<B> out;
+  if (!(x <= tab.reduce_limit && x >= -tab.reduce_limit)) {
+    out.ok = false;
+    return out;
+  }
+  using std::nearbyint;
+  using boost::multiprecision::round;
+  const B kb = [&] {
+    if constexpr (std::is_floating_point_v<B>) return std::nearbyint(x * tab.two_over_pi);
+    else return B(round(B(x * tab.two_over_pi)));
+  }();
+  out.k = static_cast<long long>(kb);
+  if (out.k == 0) {
+    out.r = Interval<B>(x);
+    return out;
+  }
+  // x - k p1 and k p1, k p2 are exact (Sterbenz; p1, p2 carry half the digits).
+  const Interval<B> kk(kb);
+  out.r = (Interval<B>(x) - kk * Interval<B>(tab.p1)) - kk * Interval<B>(tab.p2) - kk * tab.p3;
+  return out;
+}
+
+// sin and cos of the reduced argument r (|r| <= ~0.8), each with its remainder.
+template <class B> SinCos<B> sin_cos_reduced(const Interval<B>& r) {
+  const TrigTables<B>& tab = TrigTables<B>::get();
+  if (!(r.magnitude() <= tab.reduced_max)) return {Interval<B>(B(-1), B(1)), Interval<B>(B(-1), B(1))};
+  const Interval<B> r2 = r.square();
+  // Horner in r^2; the terms past the second are scaled by r^2 <= 0.64 at least twice, so they
+  // take the cheaper one-ulp widening (loose_mul_add: rigorous too, as a rounding to nearest is
+  // never more than one step off, subnormal steps included).
+  Interval<B> s = tab.sin_coef.back();
+  for (std::size_t i = tab.sin_coef.size() - 1; i-- > 2;) s = loose_mul_add(s, r2, tab.sin_coef[i]);
+  s = (s * r2 + tab.sin_coef[1]) * r2 + tab.sin_coef[0];
+  Interval<B> c = tab.cos_coef.back();
+  for (std::size_t i = tab.cos_coef.size() - 1; i-- > 2;) c = loose_mul_add(c, r2, tab.cos_coef[i]);
+  c = (c * r2 + tab.cos_coef[1]) * r2 + tab.cos_coef[0];
+  // The remainders are bounded once, for |r| <= kReducedMax (TrigTables), far below an ulp.
+  const B es = tab.sin_remainder, ec = tab.cos_remainder;
+  SinCos<B> out;
+  out.sin = r * s + Interval<B>(-es, es);
+  out.cos = c + Interval<B>(-ec, ec);
+  return out;
+}
+
+// sin(x), cos(x) for every x in X: each contains the exact range over X.
+template <class B> SinCos<B> sin_cos(const Interval<B>& x) {
+  const TrigTables<B>& tab = TrigTables<B>::get();
+  const Interval<B> unit(B(-1), B(1));
+  SinCos<B> whole{unit, unit};
+  if (!(x.width() < tab.two_pi.lo())) return whole;
+  const Reduced<B> a = reduce_half_pi(x.lo()), b = reduce_half_pi(x.hi());
+  if (!a.ok || !b.ok) return whole;
+  // sin(k pi/2 + r) and cos(k pi/2 + r) from sin r and cos r, by k mod 4.
+  auto at = [](const Reduced<B>& red) {
+    const SinCos<B> sc = sin_cos_reduced(red.r);
+    switch (((red.k % 4) + 4) % 4) {
+      case 0: return SinCos<B>{sc.sin, sc.cos};
+      case 1: return SinCos<B>{sc.cos, -sc.sin};
+      case 2: return SinCos<B>{-sc.sin, -sc.cos};
+      default: return SinCos<B>{-sc.cos, sc.sin};
+    }
+  };
+  SinCos<B> out = at(a);
+  if (x.hi() != x.lo()) {
+    const SinCos<B> e = at(b);
+    out.sin = hull(out.sin, e.sin);
+    out.cos = hull(out.cos, e.cos);
+    // The multiples k pi/2 that may lie in X (a doubtful one is kept): k_lo <= k <= k_hi.
+    const long long k_lo = a.r.lo() > B(0) ? a.k + 1 : a.k;
+    const long long k_hi = b.r.hi() < B(0) ? b.k - 1 : b.k;
+    B s_lo = out.sin.lo(), s_hi = out.sin.hi(), c_lo = out.cos.lo(), c_hi = out.cos.hi();
+    for (long long k = k_lo; k <= k_hi; ++k) {
+      switch (((k % 4) + 4) % 4) {
+        case 0: c_hi = B(1); break;
+        case 1: s_hi = B(1); break;
+        case 2: c_lo = B(-1); break;
+        default: s_lo = B(-1); break;
+      }
+    }
+    out.sin = Interval<B>(s_lo, s_hi);
+    out.cos = Interval<B>(c_lo, c_hi);
+  }
+  out.sin = out.sin.clamp(B(-1), B(1));
+  out.cos = out.cos.clamp(B(-1), B(1));
+  return out;
+}
+
+}  // namespace pge::detail

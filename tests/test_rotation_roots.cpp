@@ -1,0 +1,385 @@
+// The rotating contact solver's building blocks (issue 25, item 4): rigorous enclosures of sin
+// and cos (pge/detail/interval.hpp) and the earliest downward zero of a contact function that mixes
+// polynomials with sin and cos of turning angles (pge/detail/roots_rotating.hpp).
+//
+// Expected values are independent of the code under test: sin and cos, acos and Newton's method
+// in Boost.Multiprecision's 50-digit cpp_bin_float (its own series, not interval.hpp's), and
+// closed forms for the contact times of a square spinning in place.
+#include "pge/detail/roots_rotating.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/math/constants/constants.hpp>
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+
+namespace {
+
+using pge::RootStatus;
+using pge::StartRule;
+using pge::detail::Interval;
+using pge::detail::WaveSum;
+using High = boost::multiprecision::cpp_bin_float_50;
+
+template <class B> bool encloses(const Interval<B>& iv, const High& x) {
+  return High(iv.lo()) <= x && x <= High(iv.hi());
+}
+
+template <class B> double width_in_eps(const Interval<B>& iv) {
+  return static_cast<double>(iv.width() / std::numeric_limits<B>::epsilon());
+}
+
+// Points over many magnitudes, up to 1e6 rad (about 160,000 turns), and points next to
+// multiples of pi/2, where the reduction cancels most.
+template <class B> std::vector<B> trig_points(int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<B> out;
+  for (int i = 0; i < n; ++i) {
+    const double mag = std::pow(10.0, std::uniform_real_distribution<double>(-3, 6)(rng));
+    out.push_back(B(std::uniform_real_distribution<double>(-mag, mag)(rng)));
+    const int k = std::uniform_int_distribution<int>(-100000, 100000)(rng);
+    out.push_back(static_cast<B>(High(k) * boost::math::constants::half_pi<High>()));
+  }
+  return out;
+}
+
+template <class B> void check_point_enclosures(int n, double max_width_eps) {
+  double worst = 0;
+  for (const B& x : trig_points<B>(n, 7)) {
+    const auto sc = pge::detail::sin_cos(Interval<B>(x));
+    ASSERT_TRUE(encloses(sc.sin, boost::multiprecision::sin(High(x)))) << static_cast<double>(x);
+    ASSERT_TRUE(encloses(sc.cos, boost::multiprecision::cos(High(x)))) << static_cast<double>(x);
+    worst = std::max({worst, width_in_eps(sc.sin), width_in_eps(sc.cos)});
+  }
+  // Tight as well as right: a few ulps of 1 (the reduction's last part and the Taylor sums).
+  EXPECT_LE(worst, max_width_eps);
+}
+
+TEST(RotationTrig, PointEnclosuresHoldTheTrueValueAndAreTight) {
+  check_point_enclosures<double>(20000, 6);
+  check_point_enclosures<long double>(5000, 6);
+  check_point_enclosures<pge::Quad>(300, 6);
+}
+
+TEST(RotationTrig, FloatReducesWithinItsRangeAndGivesUpPastIt) {
+  // float's reduction is exact for |x| below 2^10; past that the enclosures are [-1, 1].
+  const auto near = pge::detail::sin_cos(Interval<float>(1000.0f));
+  EXPECT_TRUE(encloses(near.sin, boost::multiprecision::sin(High(1000.0f))));
+  EXPECT_LE(width_in_eps(near.sin), 6);
+  const auto far = pge::detail::sin_cos(Interval<float>(1.0e5f));
+  EXPECT_EQ(far.sin.lo(), -1.0f);
+  EXPECT_EQ(far.sin.hi(), 1.0f);
+}
+
+TEST(RotationTrig, IntervalEnclosuresHoldTheRangeIncludingExtrema) {
+  std::mt19937_64 rng(11);
+  for (int i = 0; i < 20000; ++i) {
+    const double a = std::uniform_real_distribution<double>(-50, 50)(rng);
+    const double w = std::pow(10.0, std::uniform_real_distribution<double>(-12, 0.8)(rng));
+    const Interval<double> x(a, a + w);
+    const auto sc = pge::detail::sin_cos(x);
+    // The true range from dense samples and the extrema inside (the samples' hull is inside the
+    // range, so each must be enclosed; the extremum values are exact).
+    for (int k = 0; k <= 16; ++k) {
+      const High t = High(a) + (High(a + w) - High(a)) * k / 16;
+      ASSERT_TRUE(encloses(sc.sin, boost::multiprecision::sin(t))) << a << " + " << w;
+      ASSERT_TRUE(encloses(sc.cos, boost::multiprecision::cos(t))) << a << " + " << w;
+    }
+    const High half_pi = boost::math::constants::half_pi<High>();
+    const long long k_lo = static_cast<long long>(boost::multiprecision::ceil(High(a) / half_pi));
+    const long long k_hi = static_cast<long long>(boost::multiprecision::floor(High(a + w) / half_pi));
+    for (long long k = k_lo; k <= k_hi; ++k) {
+      const int q = static_cast<int>(((k % 4) + 4) % 4);
+      if (q == 0) {
+        ASSERT_EQ(sc.cos.hi(), 1.0);
+      }
+      if (q == 1) {
+        ASSERT_EQ(sc.sin.hi(), 1.0);
+      }
+      if (q == 2) {
+        ASSERT_EQ(sc.cos.lo(), -1.0);
+      }
+      if (q == 3) {
+        ASSERT_EQ(sc.sin.lo(), -1.0);
+      }
+    }
+  }
+}
+
+// --- contact functions --------------------------------------------------------------------------
+
+using I = Interval<double>;
+
+// The vertex (h, -h) of a square centred at c_x spinning at w from angle 0, against the fixed
+// wall x = d (d > c_x + h, the square clear of it): the gap d - x(t), x(t) = c_x + h cos wt +
+// h sin wt. The coefficients are built as the engine would build them from the stored values,
+// with interval arithmetic: d - c_x.
+WaveSum<double> square_to_wall(double c_x, double h, double w, double d) {
+  WaveSum<double> f;
+  f.base.c[0] = I(d) - I(c_x);
+  f.wave_count = 1;
+  f.waves[0].omega = I(w);
+  f.waves[0].phase = I(0);
+  f.waves[0].cos_part.c[0] = I(-h);
+  f.waves[0].sin_part.c[0] = I(-h);
+  return f;
+}
+
+// x(t) = h sqrt(2) cos(wt - pi/4) reaches d first at wt = pi/4 - acos(d' / (h sqrt 2)), with
+// d' = d - c_x exactly (the doubles as given).
+High square_to_wall_time(double c_x, double h, double w, double d) {
+  const High pi = boost::math::constants::pi<High>();
+  const High reach = (High(d) - High(c_x)) / (High(h) * boost::multiprecision::sqrt(High(2)));
+  return (pi / 4 - boost::multiprecision::acos(reach)) / High(w);
+}
+
+double ulps_off(double t, const High& exact) {
+  const double ulp = std::nextafter(t, INFINITY) - t;
+  return static_cast<double>(boost::multiprecision::abs(High(t) - exact) / High(ulp));
+}
+
+TEST(RotationRoots, SquareSpinningInPlaceReachesAWallAtTheAcosTime) {
+  std::mt19937_64 rng(3);
+  double worst = 0;
+  for (int i = 0; i < 500; ++i) {
+    const double h = std::uniform_real_distribution<double>(0.1, 2)(rng);
+    const double w = std::pow(10.0, std::uniform_real_distribution<double>(-2, 3)(rng));
+    // The wall between the square's side (h) and its corner circle (h sqrt 2).
+    const double d = h * std::uniform_real_distribution<double>(1.0001, 1.4141)(rng);
+    for (const double c_x : {0.0, 1.0e6}) {
+      const double wall = c_x + d;
+      const auto r = pge::detail::earliest_wave_root(square_to_wall(c_x, h, w, wall), 0.0, 10.0 / w,
+                                                     StartRule::CrossingsOnly, 100000);
+      ASSERT_EQ(r.status, RootStatus::Root) << h << " " << w << " " << d;
+      EXPECT_FALSE(r.tangent);
+      worst = std::max(worst, ulps_off(r.t, square_to_wall_time(c_x, h, w, wall)));
+    }
+  }
+  // Far from the origin the gap d - c_x loses nothing (the wall's position is a double near
+  // 1e6: its ulp, 1e-10, is part of the stored geometry and of the closed form alike).
+  EXPECT_LE(worst, 4);
+}
+
+// A rod of half-length L spinning at W about a centre moving towards the wall x = L + G at v:
+// f(t) = (L + G) - v t - L cos(W t + pi) = (L + G) - v t + L cos(W t), closest each half turn
+// plus a whole one, t_k = (k + 1/2) T. v closes G over 1000 turns: the approaches k = 0..999 miss
+// by G (1 - (k + 1/2) / 1000) in (5e-16, 1e-12], the 1001st hits.
+struct NearMisses {
+  double L = 0.01, G = 1e-12, W = 2 * 3.141592653589793;
+  double T = 2 * 3.141592653589793 / W;
+  double D = L + G;
+  double v = G / (1000 * T);
+
+  WaveSum<double> function() const {
+    WaveSum<double> f;
+    f.base.degree = 1;
+    f.base.c[0] = I(D);
+    f.base.c[1] = -I(v);
+    f.wave_count = 1;
+    f.waves[0].omega = I(W);
+    f.waves[0].phase = I(0);
+    f.waves[0].cos_part.c[0] = I(L);
+    return f;
+  }
+  // Newton's method in 50 digits from the approach's falling side.
+  High contact() const {
+    auto f = [&](const High& t) { return High(D) - High(v) * t + High(L) * boost::multiprecision::cos(High(W) * t); };
+    auto df = [&](const High& t) { return -High(v) - High(L) * High(W) * boost::multiprecision::sin(High(W) * t); };
+    const High pi = boost::math::constants::pi<High>();
+    const High t_min = (2 * 1000 + 1) * pi / High(W);  // where cos(W t) = -1 on approach 1000
+    High t = t_min - High(1e-6);
+    for (int i = 0; i < 100; ++i) t -= f(t) / df(t);
+    EXPECT_LT(t, t_min);
+    EXPECT_LT(boost::multiprecision::abs(f(t)), High(1e-40));
+    return t;
+  }
+};
+
+TEST(RotationRoots, ThousandNearMissesThenTheHitWithBoundedWork) {
+  const NearMisses s;
+  const auto r = pge::detail::earliest_wave_root(s.function(), 0.0, 2000.0, StartRule::CrossingsOnly,
+                                                 1000000);
+  ASSERT_EQ(r.status, RootStatus::Root);
+  EXPECT_LE(ulps_off(r.t, s.contact()), 4);
+  // Work: a bounded number of boxes per turn (measured 38 boxes in all).
+  EXPECT_LE(r.boxes, 100u * 1001u);
+}
+
+TEST(RotationRoots, ABudgetStopsTheSearchWithProgressAndResumingFindsTheSameRoot) {
+  const NearMisses s;
+  const WaveSum<double> f = s.function();
+  const auto whole = pge::detail::earliest_wave_root(f, 0.0, 2000.0, StartRule::CrossingsOnly, 1000000);
+  // A caller with a small budget: it resumes from where each call stopped, and grows the budget
+  // when a call could not resolve any part of its interval (t == from).
+  double from = 0;
+  std::uint64_t budget = 2;
+  int stopped = 0;
+  for (int calls = 0;; ++calls) {
+    ASSERT_LT(calls, 1000);
+    const auto r = pge::detail::earliest_wave_root(f, from, 2000.0, StartRule::CrossingsOnly, budget);
+    if (r.status == RootStatus::Root) {
+      EXPECT_EQ(r.t, whole.t);
+      break;
+    }
+    ASSERT_EQ(r.status, RootStatus::Undecided);
+    ++stopped;
+    ASSERT_GE(r.t, from);
+    ASSERT_LE(r.t, whole.t);  // no crossing before t: the root is not passed
+    if (r.t == from) budget *= 2;
+    from = r.t;
+  }
+  EXPECT_GE(stopped, 2);
+}
+
+TEST(RotationRoots, ATangentialGrazeIsReportedAtTheMinimumAsATangency) {
+  // f(t) = L - L cos(W t): zero at t = 0 and again at 2 pi / W, a minimum each time (a corner
+  // touching a wall tangentially, never crossing it).
+  const double L = 0.5, W = 3.0;
+  WaveSum<double> f;
+  f.base.c[0] = I(L);
+  f.wave_count = 1;
+  f.waves[0].omega = I(W);
+  f.waves[0].cos_part.c[0] = I(-L);
+  const auto r = pge::detail::earliest_wave_root(f, 0.25, 10.0, StartRule::CrossingsOnly, 100000);
+  ASSERT_EQ(r.status, RootStatus::Root);
+  EXPECT_TRUE(r.tangent);
+  const High exact = 2 * boost::math::constants::pi<High>() / High(W);
+  // At the minimum to the precision f' can be told: f'' = L W^2, so within |f'| rounding /
+  // f'' of it, a few ulps.
+  EXPECT_LE(ulps_off(r.t, exact), 8);
+}
+
+TEST(RotationRoots, ANearMissJustAboveRoundingIsNoContact) {
+  // The same with the minimum lifted by 1e-13 (far above f's rounding, about 1e-16): no root.
+  const double L = 0.5, W = 3.0;
+  WaveSum<double> f;
+  f.base.c[0] = I(L + 1e-13);
+  f.wave_count = 1;
+  f.waves[0].omega = I(W);
+  f.waves[0].cos_part.c[0] = I(-L);
+  const auto r = pge::detail::earliest_wave_root(f, 0.25, 10.0, StartRule::CrossingsOnly, 100000);
+  EXPECT_EQ(r.status, RootStatus::None);
+}
+
+TEST(RotationRoots, OverlapAtTheStartCollidesOnlyUnderTheOverlapRule) {
+  // Negative at 0 and falling: f(t) = -0.01 - t + 0.1 sin(t) (f' = -1 + 0.1 cos t < 0).
+  WaveSum<double> f;
+  f.base.degree = 1;
+  f.base.c[0] = I(-0.01);
+  f.base.c[1] = I(-1);
+  f.wave_count = 1;
+  f.waves[0].omega = I(1);
+  f.waves[0].sin_part.c[0] = I(0.1);
+  const auto overlap = pge::detail::earliest_wave_root(f, 0.0, 5.0, StartRule::OverlapCollides, 1000);
+  ASSERT_EQ(overlap.status, RootStatus::Root);
+  EXPECT_TRUE(overlap.at_start_overlap);
+  EXPECT_EQ(overlap.t, 0.0);
+  const auto crossings = pge::detail::earliest_wave_root(f, 0.0, 5.0, StartRule::CrossingsOnly, 1000);
+  EXPECT_EQ(crossings.status, RootStatus::None);
+}
+
+// Random contact functions of the engine's shape (a quadratic path against a spinning feature,
+// two waves, the second at a difference of rates), against a reference that is independent of
+// interval arithmetic: samples every 1/64 of the fastest half-turn in 50 digits, each local
+// minimum between samples located by bisection on f' and its value checked, and Newton polishing
+// the first downward crossing. Functions whose reference comes within 1e-9 of a tangency (the
+// minimum's value) are skipped: the two methods need not agree on a graze's side.
+TEST(RotationRoots, RandomFunctionsAgreeWithAHighPrecisionScan) {
+  std::mt19937_64 rng(5);
+  auto uni = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  int compared = 0, roots = 0;
+  for (int n = 0; n < 300; ++n) {
+    WaveSum<double> f;
+    f.base.degree = 2;
+    f.base.c[0] = I(uni(0.05, 1.0));
+    f.base.c[1] = I(uni(-1, 0.2));
+    f.base.c[2] = I(uni(-0.5, 0.1));
+    f.wave_count = 2;
+    const double w0 = uni(0.5, 20), w1 = uni(-20, 20);
+    f.waves[0].omega = I(w0);
+    f.waves[0].phase = I(uni(-3, 3));
+    f.waves[0].cos_part.c[0] = I(uni(-0.3, 0.3));
+    f.waves[0].sin_part.degree = 1;
+    f.waves[0].sin_part.c[0] = I(uni(-0.3, 0.3));
+    f.waves[0].sin_part.c[1] = I(uni(-0.05, 0.05));
+    f.waves[1].omega = I(w1);
+    f.waves[1].phase = I(uni(-3, 3));
+    f.waves[1].cos_part.c[0] = I(uni(-0.1, 0.1));
+    const double hi = 4.0;
+
+    auto value = [&](const High& t, int order) {
+      // f^(order)(t) for order 0, 1: direct formulas in 50 digits.
+      High v = 0;
+      const auto& b = f.base;
+      if (order == 0) v = High(b.c[0].lo()) + High(b.c[1].lo()) * t + High(b.c[2].lo()) * t * t;
+      else v = High(b.c[1].lo()) + 2 * High(b.c[2].lo()) * t;
+      for (int j = 0; j < 2; ++j) {
+        const auto& w = f.waves[static_cast<std::size_t>(j)];
+        const High om = High(w.omega.lo());
+        const High arg = om * t + High(w.phase.lo());
+        const High c = High(w.cos_part.c[0].lo());
+        const High s = High(w.sin_part.c[0].lo()) + (w.sin_part.degree > 0 ? High(w.sin_part.c[1].lo()) * t : High(0));
+        const High ds = w.sin_part.degree > 0 ? High(w.sin_part.c[1].lo()) : High(0);
+        if (order == 0) v += c * cos(arg) + s * sin(arg);
+        else v += -c * om * sin(arg) + ds * sin(arg) + s * om * cos(arg);
+      }
+      return v;
+    };
+    const double fastest = std::max(std::abs(w0), std::abs(w1));
+    const int steps = static_cast<int>(hi * fastest / 3.14159 * 64) + 64;
+    std::optional<High> expected;
+    bool doubtful = false;
+    High prev_t = 0, prev_f = value(prev_t, 0), prev_d = value(prev_t, 1);
+    if (prev_f <= 0) continue;
+    for (int k = 1; k <= steps && !expected && !doubtful; ++k) {
+      const High t = High(hi) * k / steps;
+      const High ft = value(t, 0), dt = value(t, 1);
+      if (ft < 0) {  // a crossing in (prev_t, t): polish by bisection (f changes sign once here)
+        High a = prev_t, b = t;
+        for (int i = 0; i < 200; ++i) {
+          const High m = (a + b) / 2;
+          (value(m, 0) > 0 ? a : b) = m;
+        }
+        expected = a;
+      } else if (prev_d < 0 && dt > 0) {  // a minimum in between: its value
+        High a = prev_t, b = t;
+        for (int i = 0; i < 200; ++i) {
+          const High m = (a + b) / 2;
+          (value(m, 1) < 0 ? a : b) = m;
+        }
+        const High fm = value(a, 0);
+        if (boost::multiprecision::abs(fm) < High(1e-9)) doubtful = true;
+        else if (fm < 0) {
+          High lo = prev_t, hi2 = a;
+          for (int i = 0; i < 200; ++i) {
+            const High m = (lo + hi2) / 2;
+            (value(m, 0) > 0 ? lo : hi2) = m;
+          }
+          expected = lo;
+        }
+      }
+      prev_t = t;
+      prev_f = ft;
+      prev_d = dt;
+    }
+    if (doubtful) continue;
+    const auto r = pge::detail::earliest_wave_root(f, 0.0, hi, StartRule::CrossingsOnly, 1000000);
+    ++compared;
+    if (!expected) {
+      EXPECT_EQ(r.status, RootStatus::None) << "function " << n << " t " << r.t;
+      continue;
+    }
+    ++roots;
+    ASSERT_EQ(r.status, RootStatus::Root) << "function " << n;
+    EXPECT_FALSE(r.tangent) << n;
+    EXPECT_LE(ulps_off(r.t, *expected), 8) << "function " << n << " got " << r.t << " expected "
+                                            << expected->str(20);
+  }
+  EXPECT_GE(compared, 200);
+  EXPECT_GE(roots, 50);
+}
+
+}  // namespace
