@@ -211,6 +211,18 @@ template <class B> class Interval {
     if (lo_ >= B(0) || hi_ <= B(0)) return raw(R::mul_down(a, a), R::mul_up(b, b));
     return raw(B(0), R::mul_up(b, b));
   }
+  // The square root of the non-negative part: each bound from B's sqrt, then stepped outward
+  // until its square (rounded outward) is on the right side, so no claim about the library's
+  // sqrt is needed.
+  Interval sqrt() const {
+    using std::sqrt;
+    if (!(hi_ >= B(0))) return whole();
+    const B l = lo_ > B(0) ? lo_ : B(0);
+    B rl = sqrt(l), rh = sqrt(hi_);
+    while (rl > B(0) && R::mul_up(rl, rl) > l) rl = interval_next_down(rl);
+    while (R::mul_down(rh, rh) < hi_) rh = interval_next_up(rh);
+    return raw(rl, rh);
+  }
   friend Interval hull(const Interval& a, const Interval& b) {
     return raw(std::min(a.lo_, b.lo_), std::max(a.hi_, b.hi_));
   }

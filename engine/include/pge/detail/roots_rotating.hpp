@@ -337,4 +337,18 @@ WaveRoot<B> earliest_wave_root(const WaveSum<B>& f, const B& lo, const B& hi, St
   return finder.earliest(lo, hi, max_boxes);
 }
 
+// Where a search for the next downward crossing may start after one at t: the first of t plus
+// 1, 2, 4, ... ulps at which f is certainly negative (or hi). Just after a crossing f's
+// enclosure still holds zero, and a start that touches zero while decreasing counts as a
+// crossing, so a search from the next value of B would find the same crossing again, an ulp at a
+// time. The caller is one that rejects a crossing (a vertex on an edge's line beyond the edge).
+template <class B> B past_crossing(const WaveSum<B>& f, const B& t, const B& hi) {
+  B step = interval_next_up(t) - t;
+  for (B x = interval_next_up(t); x < hi; x = t + step) {
+    if (f(Interval<B>(x)).negative()) return x;
+    step = step * B(2);
+  }
+  return hi;
+}
+
 }  // namespace pge::detail
