@@ -140,7 +140,8 @@ void add_wave(WaveSum<B>& f, const Interval<B>& omega, const Interval<B>& phase,
 
 template <class B> struct FeatureFunctions {
   WaveSum<B> gap;    // crosses zero downward at the contact
-  WaveSum<B> along;  // where the contact point lies on the edge (in [0, e.e] on it); vertex pairs: unused
+  WaveSum<B> along;  // where the contact point lies on the edge (in [0, e.e] on it)
+  Interval<B> length_sq;  // e.e
 };
 
 // Cross and dot as functions, for apply().
@@ -152,17 +153,20 @@ template <class B> struct DotWith {
 };
 
 // Vertex r of P (or, with rho > 0 and r = 0, a circle of radius rho centred on P's path)
-// against the edge from q along e of Q. P and Q are expressed from the same origin.
+// against the edge of Q from vertex q to vertex q_end (e = q_end - q, enclosed: the edge between
+// the stored vertices, whatever B makes of the difference). P and Q are expressed from the same
+// origin.
 template <class B>
 FeatureFunctions<B> point_edge_functions(const PathAt<B>& P, const Vec2<B>& r, const B& rho, const PathAt<B>& Q,
-                                         const Vec2<B>& q, const Vec2<B>& e) {
+                                         const Vec2<B>& q, const Vec2<B>& q_end) {
   using I = Interval<B>;
   const VecPoly<B> d = relative_centre(P, Q);
-  const Vec2<I> ei = enclose(e), ri = enclose(r), qi = enclose(q);
+  const Vec2<I> qi = enclose(q), ei = enclose(q_end) - qi, ri = enclose(r);
   const IntervalPoly<B> d_cross = apply(d, ei, CrossWith<B>{}), d_dot = apply(d, ei, DotWith<B>{});
   FeatureFunctions<B> out;
+  out.length_sq = dot(ei, ei);
   for (WaveSum<B>* f : {&out.gap, &out.along}) f->origin = P.origin;
-  out.gap.base = constant_poly(-cross(qi, ei) - (rho > B(0) ? I(rho) * dot(ei, ei).sqrt() : I(B(0))));
+  out.gap.base = constant_poly(-cross(qi, ei) - (rho > B(0) ? I(rho) * out.length_sq.sqrt() : I(B(0))));
   out.along.base = constant_poly(-dot(qi, ei));
   add_wave(out.gap, Q.omega, Q.phase, d_cross, d_dot);
   add_wave(out.along, Q.omega, Q.phase, d_dot, I(B(-1)) * d_cross);

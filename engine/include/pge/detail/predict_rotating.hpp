@@ -1,0 +1,248 @@
+// The first contact of two bodies of which at least one turns (issue "Rotation", item 4): the
+// robust solver's pair prediction, over every feature pair, with rigorous enclosures.
+//
+// Shapes. A circle (radius > 0, no vertices; it carries no angle) or a convex outline: the
+// vertices counter-clockwise in the body's frame about its centre (a segment is an outline of two
+// vertices, whose two edges face both ways). `reach` bounds every point of the shape from the
+// centre (the bounding circle).
+//
+// Features. Outline against outline: each vertex of either against each edge of the other.
+// Circle against outline: the circle against each edge and each vertex. Circles against each
+// other do not need this: their contact does not depend on angles. Every contact of two convex
+// shapes that were apart is first a point of one boundary meeting the other, so the first contact
+// is the earliest feature root at which the feature really touches: a vertex root counts where the
+// vertex lies on the edge (along in [0, e.e], possibly, by its enclosure), a circle-vertex root
+// always (the vertex is on the circle). A root on an edge's line beyond the edge is searched past
+// (past_crossing) and the search goes on.
+//
+// Work. The bounding circles first: the search starts where their distance can first be zero
+// (the earliest root of |d|^2 - (reach_a + reach_b)^2, a polynomial, no waves), and a pair whose
+// bounding circles never meet in the window costs one search of a quadratic. Each feature's
+// search is bounded by `max_boxes`; past it the pair's result is Undecided at the earliest time
+// up to which no feature is known to touch, and the caller predicts again from there (progress
+// every call; a body spinning many turns between contacts costs about a constant per turn, see
+// roots_rotating.hpp).
+#pragma once
+
+#include "pge/detail/contact_rotating.hpp"
+
+#include <cstdint>
+#include <span>
+#include <type_traits>
+
+namespace pge::detail {
+
+template <class B> struct RotatingShape {
+  StoredPath<B> path;
+  B radius{};                      // a circle: radius > 0 and no vertices
+  std::span<const Vec2<B>> vertices;  // an outline: counter-clockwise, about the centre
+  B reach{};                       // max distance of the shape's points from the centre
+  bool circle() const { return vertices.empty(); }
+};
+
+enum class RotatingFeature : std::uint8_t { VertexEdge, CircleEdge, CircleVertex };
+
+template <class B> struct RotatingContact {
+  RootStatus status = RootStatus::None;
+  B t{};  // Root: the contact; Undecided: no contact is known before t; None: the window's end
+  bool at_start_overlap = false;
+  bool tangent = false;
+  RotatingFeature feature = RotatingFeature::VertexEdge;
+  bool point_on_a = false;       // the vertex (or the circle) belongs to a; the edge (or vertex) to b
+  std::size_t point = 0, edge = 0;  // the vertex index (VertexEdge); the edge index (k: vertex k to k + 1) or vertex
+  std::uint64_t boxes = 0;       // work: boxes enclosed over every search
+};
+
+struct RotatingOptions {
+  std::uint64_t max_boxes = 100000;  // per feature search
+  bool bounding_circles = true;      // start where the bounding circles can first touch
+};
+
+template <class B> class RotatingPairPredictor {
+ public:
+  RotatingPairPredictor(const RotatingShape<B>& a, const RotatingShape<B>& b, StartRule rule, RotatingOptions opt)
+      : a_(a), b_(b), rule_(rule), opt_(opt) {}
+
+  RotatingContact<B> earliest(const B& lo, const B& hi) {
+    origin_ = lo;
+    best_ = {};
+    best_.t = hi;
+    const PathAt<B> pa = path_at(a_.path, lo), pb = path_at(b_.path, lo);
+    B from = lo;
+    if (opt_.bounding_circles) {
+      WaveSum<B> reach;
+      reach.origin = lo;
+      const Interval<B> r = Interval<B>(a_.reach) + Interval<B>(b_.reach);
+      reach.base = squared_norm(relative_centre(pa, pb)) + constant_poly(-(r * r));
+      // Apart at lo: nothing can touch before the bounding circles do. (Overlapping at lo, even
+      // while separating, a turning corner may still strike: the search starts at lo.)
+      if (reach(Interval<B>(lo)).positive()) {
+        const WaveRoot<B> meet = earliest_wave_root(reach, lo, hi, StartRule::CrossingsOnly, opt_.max_boxes);
+        best_.boxes += meet.boxes;
+        if (meet.status == RootStatus::None) return best_;
+        if (meet.status == RootStatus::Undecided) {
+          best_.status = RootStatus::Undecided;
+          best_.t = meet.t;
+          return best_;
+        }
+        // Before meet.t the squared distance is certainly above the reaches' sum squared.
+        from = meet.t;
+      }
+    }
+    // The start rule belongs to lo (now); from a later start the shapes cannot overlap there.
+    rule_now_ = from == lo ? rule_ : StartRule::CrossingsOnly;
+    if (!a_.circle() && !b_.circle()) {
+      outline_outline(pa, a_, pb, b_, true, from);
+      outline_outline(pb, b_, pa, a_, false, from);
+    } else if (a_.circle() != b_.circle()) {
+      const bool a_round = a_.circle();
+      circle_outline(a_round ? pa : pb, a_round ? a_ : b_, a_round ? pb : pa, a_round ? b_ : a_, a_round, from);
+    }
+    return best_;
+  }
+
+ private:
+  // The vertices of P against the edges of Q.
+  void outline_outline(const PathAt<B>& P, const RotatingShape<B>& sp, const PathAt<B>& Q, const RotatingShape<B>& sq,
+                       bool point_on_a, const B& from) {
+    const std::size_t nq = sq.vertices.size();
+    for (std::size_t i = 0; i < sp.vertices.size(); ++i)
+      for (std::size_t k = 0; k < nq; ++k) {
+        const FeatureFunctions<B> f =
+            point_edge_functions(P, sp.vertices[i], B(0), Q, sq.vertices[k], sq.vertices[(k + 1) % nq]);
+        search_edge(f, P, sp.vertices[i], B(0), Q, sq, from, {RotatingFeature::VertexEdge, point_on_a, i, k});
+      }
+  }
+
+  void circle_outline(const PathAt<B>& P, const RotatingShape<B>& sp, const PathAt<B>& Q, const RotatingShape<B>& sq,
+                      bool point_on_a, const B& from) {
+    const std::size_t nq = sq.vertices.size();
+    for (std::size_t k = 0; k < nq; ++k) {
+      const FeatureFunctions<B> f =
+          point_edge_functions(P, Vec2<B>{}, sp.radius, Q, sq.vertices[k], sq.vertices[(k + 1) % nq]);
+      search_edge(f, P, Vec2<B>{}, sp.radius, Q, sq, from, {RotatingFeature::CircleEdge, point_on_a, 0, k});
+    }
+    for (std::size_t k = 0; k < nq; ++k) {
+      const WaveSum<B> f = circle_vertex_function(P, sp.radius, Q, sq.vertices[k]);
+      const WaveRoot<B> r = earliest_wave_root(f, from, best_.t, rule_now_, opt_.max_boxes);
+      best_.boxes += r.boxes;
+      take(r, {RotatingFeature::CircleVertex, point_on_a, 0, k});
+    }
+  }
+
+  struct Which {
+    RotatingFeature feature;
+    bool point_on_a;
+    std::size_t point, edge;
+  };
+
+  // A point feature against an edge: roots of the gap where `along` may be in [0, e.e]; others
+  // are searched past. A start in overlap (the rule's root at lo) counts only where the point
+  // may be inside Q's outline (every edge's gap possibly <= 0; for a circle, the outline pushed
+  // out by its radius, a superset of overlap at the corners), not merely behind this edge's line.
+  void search_edge(const FeatureFunctions<B>& f, const PathAt<B>& P, const Vec2<B>& r, const B& rho,
+                   const PathAt<B>& Q, const RotatingShape<B>& sq, B lo, const Which& which) {
+    StartRule rule = rule_now_;
+    while (lo < best_.t) {
+      const WaveRoot<B> root = earliest_wave_root(f.gap, lo, best_.t, rule, opt_.max_boxes);
+      best_.boxes += root.boxes;
+      if (root.status != RootStatus::Root) {
+        take(root, which);
+        return;
+      }
+      const Interval<B> along = f.along(Interval<B>(root.t));
+      const bool on_edge = along.hi() >= B(0) && along.lo() <= f.length_sq.hi();
+      if (on_edge && (!root.at_start_overlap || possibly_inside(P, r, rho, Q, sq, root.t))) {
+        take(root, which);
+        return;
+      }
+      rule = StartRule::CrossingsOnly;
+      lo = past_crossing(f.gap, root.t, best_.t);
+    }
+  }
+
+  bool possibly_inside(const PathAt<B>& P, const Vec2<B>& r, const B& rho, const PathAt<B>& Q,
+                       const RotatingShape<B>& sq, const B& t) const {
+    const std::size_t nq = sq.vertices.size();
+    for (std::size_t k = 0; k < nq; ++k) {
+      if (point_edge_functions(P, r, rho, Q, sq.vertices[k], sq.vertices[(k + 1) % nq]).gap(Interval<B>(t)).positive()) return false;
+    }
+    return true;
+  }
+
+  // Keeps the earliest result; an Undecided one caps the window (no later root may be reported).
+  // A crossing is placed again with the feature's function built in the wider type from the
+  // stored values before it caps the window, so that a feature whose crossing is earlier by
+  // less than the first placement's doubt is still found.
+  void take(WaveRoot<B> r, const Which& which) {
+    if (r.status == RootStatus::None || !(r.t <= best_.t)) return;
+    if (r.status == RootStatus::Root && !r.at_start_overlap && !r.tangent) r.t = refine(which, r.t, best_.t);
+    if (r.t == best_.t && best_.status == RootStatus::Root) return;  // ties: the first found stays
+    best_ = {r.status, r.t, r.at_start_overlap, r.tangent, which.feature, which.point_on_a, which.point, which.edge,
+             best_.boxes};
+  }
+
+  // The crossing of `which` at or after t (the first value of B at which its function, built in
+  // B, is not certainly positive; before t it is, so the crossing is not earlier): the first
+  // value of B at which the function built in the wider type is not certainly positive, by
+  // doubling steps from t and bisection. Coefficients built from the stored values in the wider
+  // type carry its rounding, not B's, so the place is known to about B's own precision.
+  B refine(const Which& which, const B& t, const B& hi) const {
+    using W = typename Wider<B>::type;
+    if constexpr (std::is_void_v<W> || std::is_same_v<B, Quad>) {
+      return t;
+    } else {
+      const WaveSum<W> f = wide_function<W>(which);
+      const auto positive = [&](const B& x) { return f(Interval<W>(W(x))).positive(); };
+      if (!positive(t)) return t;
+      B good = t, bad = hi, step = interval_next_up(t) - t;
+      for (B x = interval_next_up(t); x < hi; x = t + step) {
+        if (!positive(x)) {
+          bad = x;
+          break;
+        }
+        good = x;
+        step = step * B(2);
+      }
+      for (;;) {
+        const B m = good + (bad - good) / B(2);
+        if (!(good < m && m < bad)) return bad;
+        (positive(m) ? good : bad) = m;
+      }
+    }
+  }
+
+  template <class W> static StoredPath<W> widen_path(const StoredPath<B>& p) {
+    const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
+    return {W(p.t0), v(p.p0), v(p.v0), v(p.a), W(p.theta0), W(p.omega)};
+  }
+
+  // The function of `which` in W, from the search's origin, the stored values converted exactly.
+  template <class W> WaveSum<W> wide_function(const Which& which) const {
+    const RotatingShape<B>& sp = which.point_on_a ? a_ : b_;
+    const RotatingShape<B>& sq = which.point_on_a ? b_ : a_;
+    const PathAt<W> P = path_at(widen_path<W>(sp.path), W(origin_)), Q = path_at(widen_path<W>(sq.path), W(origin_));
+    const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
+    const std::size_t n = sq.vertices.size();
+    const Vec2<W> q = v(sq.vertices[which.edge]);
+    if (which.feature == RotatingFeature::CircleVertex) return circle_vertex_function(P, W(sp.radius), Q, q);
+    const Vec2<W> r = which.feature == RotatingFeature::VertexEdge ? v(sp.vertices[which.point]) : Vec2<W>{};
+    return point_edge_functions(P, r, W(sp.radius), Q, q, v(sq.vertices[(which.edge + 1) % n])).gap;
+  }
+
+  const RotatingShape<B>& a_;
+  const RotatingShape<B>& b_;
+  StartRule rule_, rule_now_ = StartRule::CrossingsOnly;
+  RotatingOptions opt_;
+  RotatingContact<B> best_;
+  B origin_{};
+};
+
+template <class B>
+RotatingContact<B> predict_rotating_pair(const RotatingShape<B>& a, const RotatingShape<B>& b, const B& lo, const B& hi,
+                                         StartRule rule, RotatingOptions opt = {}) {
+  RotatingPairPredictor<B> p(a, b, rule, opt);
+  return p.earliest(lo, hi);
+}
+
+}  // namespace pge::detail
