@@ -238,6 +238,86 @@ template <class B> class RotatingPairPredictor {
   B origin_{};
 };
 
+// Where and along which normal two shapes touch at a predicted contact (double geometry at the
+// contact's time, for the response): the point, the normal from a to b (any length), and
+// whether it is a face on a face.
+//
+// Face on face. When the vertex's neighbour along its own outline cannot be told from touching
+// the same edge at that time either (its gap's enclosure holds zero) and lies on the edge, the
+// two faces meet along a stretch, not at a point: the point is then the middle of the stretch
+// (of the two vertices' positions along the edge, clamped to it), on the struck edge's line,
+// and the normal the edge's. The middle because a face that lands flat must bounce without
+// turning (a box dropped flat on a floor leaves as the translating engine would have it): one
+// impulse stands for pressure spread over the stretch, and its centre is the middle; either end
+// would set the box spinning.
+template <class B> struct RotatingGeometry {
+  Vec2<B> point, normal;
+  bool face_on_face = false;
+};
+
+template <class B> Vec2<B> rotated(const B& angle, const Vec2<B>& r) {
+  using std::cos;
+  using std::sin;
+  const B c = cos(angle), s = sin(angle);
+  return {c * r.x - s * r.y, s * r.x + c * r.y};
+}
+
+template <class B> Vec2<B> centre_at(const StoredPath<B>& p, const B& t) {
+  const B s = t - p.t0;
+  return p.p0 + p.v0 * s + p.a * (s * s / B(2));
+}
+
+template <class B> B angle_at(const StoredPath<B>& p, const B& t) { return p.theta0 + p.omega * (t - p.t0); }
+
+template <class B>
+RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const RotatingShape<B>& b,
+                                              const RotatingContact<B>& c) {
+  const RotatingShape<B>& sp = c.point_on_a ? a : b;
+  const RotatingShape<B>& sq = c.point_on_a ? b : a;
+  const Vec2<B> cp = centre_at(sp.path, c.t), cq = centre_at(sq.path, c.t);
+  const B tp = angle_at(sp.path, c.t), tq = angle_at(sq.path, c.t);
+  const std::size_t n = sq.vertices.size();
+  RotatingGeometry<B> g;
+  // Outward from Q towards P.
+  Vec2<B> out;
+  if (c.feature == RotatingFeature::CircleVertex) {
+    const Vec2<B> v = cq + rotated(tq, sq.vertices[c.edge]);
+    g.point = v;
+    out = cp - v;
+  } else {
+    const Vec2<B> qa = cq + rotated(tq, sq.vertices[c.edge]), qb = cq + rotated(tq, sq.vertices[(c.edge + 1) % n]);
+    const Vec2<B> e = qb - qa;
+    out = Vec2<B>{e.y, -e.x};
+    if (c.feature == RotatingFeature::CircleEdge) {
+      using std::sqrt;
+      const B len = sqrt(dot(e, e));
+      g.point = cp - out * (sp.radius / len);
+    } else {
+      g.point = cp + rotated(tp, sp.vertices[c.point]);
+      const std::size_t m = sp.vertices.size();
+      const PathAt<B> P = path_at(sp.path, c.t), Q = path_at(sq.path, c.t);
+      const Interval<B> at(c.t);
+      const B ee = dot(e, e);
+      for (const std::size_t j : {(c.point + 1) % m, (c.point + m - 1) % m}) {
+        if (j == c.point) continue;
+        const FeatureFunctions<B> f =
+            point_edge_functions(P, sp.vertices[j], B(0), Q, sq.vertices[c.edge], sq.vertices[(c.edge + 1) % n]);
+        const Interval<B> along = f.along(at);
+        if (!f.gap(at).contains_zero() || along.hi() < B(0) || along.lo() > f.length_sq.hi()) continue;
+        // Both on the edge's line: the middle of their stretch along it, clamped to the edge.
+        const Vec2<B> other = cp + rotated(tp, sp.vertices[j]);
+        const auto clamp = [&](const B& x) { return x < B(0) ? B(0) : (x > ee ? ee : x); };
+        const B s0 = clamp(dot(g.point - qa, e)), s1 = clamp(dot(other - qa, e));
+        g.point = qa + e * ((s0 + s1) / (B(2) * ee));
+        g.face_on_face = true;
+        break;
+      }
+    }
+  }
+  g.normal = c.point_on_a ? -out : out;
+  return g;
+}
+
 template <class B>
 RotatingContact<B> predict_rotating_pair(const RotatingShape<B>& a, const RotatingShape<B>& b, const B& lo, const B& hi,
                                          StartRule rule, RotatingOptions opt = {}) {
