@@ -26,6 +26,7 @@
 
 #include "pge/detail/contact_rotating.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <type_traits>
@@ -306,8 +307,7 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
         if (!f.gap(at).contains_zero() || along.hi() < B(0) || along.lo() > f.length_sq.hi()) continue;
         // Both on the edge's line: the middle of their stretch along it, clamped to the edge.
         const Vec2<B> other = cp + rotated(tp, sp.vertices[j]);
-        const auto clamp = [&](const B& x) { return x < B(0) ? B(0) : (x > ee ? ee : x); };
-        const B s0 = clamp(dot(g.point - qa, e)), s1 = clamp(dot(other - qa, e));
+        const B s0 = std::clamp(B(dot(g.point - qa, e)), B(0), ee), s1 = std::clamp(B(dot(other - qa, e)), B(0), ee);
         g.point = qa + e * ((s0 + s1) / (B(2) * ee));
         g.face_on_face = true;
         break;
