@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
   std::string scalar = "double";
   CLI::App* run_cmd = app.add_subcommand("run", "Simulate scenes: print a summary per scene and write event traces; exit 11 when a body passed through a fixed "
       "body (tunnelling).");
-  run_cmd->add_option("scenes", run.scenes, "Scene files (pge-scene/1 JSON) or directories of them")->required();
+  run_cmd->add_option("scenes", run.scenes, "Scene files (pge-scene JSON) or directories of them")->required();
   run_cmd->add_option("--until", run.until, "Simulated seconds (default: each scene's run.until)")->check(kPositive);
   run_cmd->add_option("--max-events", run.max_events, "Stop after this many collisions (default: the scene's run.max_events)")
       ->transform(kEventCount);
@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
       "  stderr, \"pge check: FILE: SOLVER: expected ..., measured ...\" (exit 7); a storm the block expects\n"
       "  (\"stop\": \"event-storm\") is no failure; \"oracle\": false runs the engine alone (faster); a malformed\n"
       "  block is a bad scene (exit 3).\n") + kExitCodeHelp);
-  check_cmd->add_option("scenes", check.scenes, "Scene files (pge-scene/1 JSON) or directories of them (searched recursively)")
+  check_cmd->add_option("scenes", check.scenes, "Scene files (pge-scene JSON) or directories of them (searched recursively)")
       ->required();
   check_cmd->add_option("--until", check.until, "Simulated seconds (default: each scene's run.until)")->check(kPositive);
   check_cmd->add_option("--max-events", check.max_events, "Stop after this many collisions (default: the scene's run.max_events)")
@@ -311,7 +311,7 @@ int main(int argc, char** argv) {
       "One scene run by PGE (by default robust and certified, double) and by Box2D and Chipmunk at several step "
       "rates and iteration counts: wall time, energy and momentum drift, penetration, tunnelling, final-state error "
       "against PGE certified double (a Markdown table).");
-  compare_cmd->add_option("scene", compare.scene, "A scene file (pge-scene/1 JSON)")->required();
+  compare_cmd->add_option("scene", compare.scene, "A scene file (pge-scene JSON)")->required();
   compare_cmd->add_option("--peers", compare.peers, "Peers beside PGE: box2d, chipmunk")->delimiter(',')->capture_default_str();
   compare_cmd->add_option("--solvers", compare.solvers, "PGE's solvers: fast, robust, certified")
       ->delimiter(',')
@@ -349,7 +349,7 @@ int main(int argc, char** argv) {
       "  referee follows; a state more than 1e-6 (relative) off that path is a bad trace. An end record\n"
       "  with \"stop\": \"reached-until\" makes a contact left before its time a miss.\n") + kExitCodeHelp);
   judge_cmd->add_option("trace", judge.trace, "A trace file (pge-trace/2 JSON Lines, events or steps mode)")->required();
-  judge_cmd->add_option("--scene", judge.scene, "The scene the trace is a run of (pge-scene/1 JSON)")->required();
+  judge_cmd->add_option("--scene", judge.scene, "The scene the trace is a run of (pge-scene JSON)")->required();
   judge_cmd->add_option("--json", judge.json, "Also write the summary and every verdict to FILE (JSON, pge-judge/1; -: stdout, instead of the summary)");
   judge_cmd->add_option("--overlap-bound", judge.overlap_bound,
                         "Steps mode: an unreported overlap deeper than this fraction of the pair's contact distance is a miss")
@@ -360,7 +360,7 @@ int main(int argc, char** argv) {
   RenderOptions render;
   CLI::App* render_cmd = app.add_subcommand(
       "render", "A picture of a scene and its trajectory, collision points marked: FILE.svg, or FILE.html (animated).");
-  render_cmd->add_option("scene", render.scene, "A scene file (pge-scene/1 JSON)")->required();
+  render_cmd->add_option("scene", render.scene, "A scene file (pge-scene JSON)")->required();
   render_cmd->add_option("-o,--out", render.out, "Output: FILE.svg or FILE.html")->required();
   render_cmd->add_option("--until", render.until, "Simulated seconds (default: the scene's run.until)")->check(kPositive);
   render_cmd->add_option("--max-events", render.max_events, "Stop after this many collisions (default: the scene's)")

@@ -28,7 +28,9 @@ bool same_body(const BodyDesc& a, const BodyDesc& b) {
     if (!same(a.vertices[k], b.vertices[k])) return false;
   return a.id == b.id && a.shape == b.shape && same(a.radius, b.radius) && same(a.a, b.a) && same(a.b, b.b) &&
          same(a.position, b.position) && same(a.velocity, b.velocity) && same(a.acceleration, b.acceleration) &&
-         a.fixed == b.fixed && same(a.mass, b.mass) && a.gravity == b.gravity && same(a.restitution, b.restitution);
+         a.fixed == b.fixed && same(a.mass, b.mass) && a.gravity == b.gravity && same(a.restitution, b.restitution) &&
+         a.rotates == b.rotates && same(a.angle, b.angle) && same(a.angular_velocity, b.angular_velocity) &&
+         same(a.inertia, b.inertia);
 }
 
 bool same_scene(const Scene& a, const Scene& b) {

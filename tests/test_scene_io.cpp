@@ -2,6 +2,7 @@
 // kind of bad input.
 #include "pge/constants.hpp"
 #include "pge/scene_io.hpp"
+#include "pge/world.hpp"
 
 #include <gtest/gtest.h>
 
@@ -58,6 +59,10 @@ void expect_same_scene(const Scene& s, const Scene& t) {
     expect_same(b.mass, c.mass, at + "mass");
     EXPECT_EQ(b.gravity, c.gravity) << at;
     expect_same(b.restitution, c.restitution, at + "restitution");
+    EXPECT_EQ(b.rotates, c.rotates) << at;
+    expect_same(b.angle, c.angle, at + "angle");
+    expect_same(b.angular_velocity, c.angular_velocity, at + "angular_velocity");
+    expect_same(b.inertia, c.inertia, at + "inertia");
   }
 }
 
@@ -215,6 +220,114 @@ TEST(SceneIo, Defaults) {
   EXPECT_TRUE(s.bodies[1].fixed);
   expect_same(s.bodies[1].mass, 1, "fixed body mass");
   EXPECT_EQ(loaded.expect_json, "");
+}
+
+// pge-scene/2 (rotation). Only a scene with rotation is written as /2, so every translate-only
+// scene keeps its /1 text; within /2 each rotation key is written only where it is not the
+// body's default (moving polygons and segments rotate, fixed bodies and circles do not).
+Scene rotation_scene() {
+  Scene s = awkward_scene();
+  BodyDesc spinner;
+  spinner.id = "spinner";
+  spinner.shape = ShapeKind::Polygon;
+  spinner.vertices = {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
+  spinner.position = {40, 40};
+  spinner.rotates = true;
+  spinner.angle = -0.0;  // must stay negative zero
+  spinner.angular_velocity = kThird;
+  spinner.inertia = 0.1;
+  s.bodies.push_back(spinner);
+  BodyDesc turnstile = spinner;
+  turnstile.id = "turnstile";
+  turnstile.position = {-40, 40};
+  turnstile.fixed = true;
+  turnstile.angle = kMaxAngle;
+  turnstile.angular_velocity = -kMaxAngularVelocity;
+  turnstile.inertia = 0;
+  s.bodies.push_back(turnstile);
+  BodyDesc rod;
+  rod.id = "rod";
+  rod.shape = ShapeKind::Segment;
+  rod.a = {-1, 0};
+  rod.b = {1, 0};
+  rod.position = {40, -40};
+  rod.rotates = true;
+  rod.angular_velocity = kTinyInRange;
+  s.bodies.push_back(rod);
+  return s;
+}
+
+TEST(SceneIo, RotationRoundTripIsBitExact) {
+  const Scene s = rotation_scene();
+  const std::string text = write_scene(s);
+  EXPECT_NE(text.find("\"format\": \"pge-scene/2\""), std::string::npos) << text;
+  const LoadedScene back = parse_scene(text, "rotation.json");
+  expect_same_scene(s, back.scene);
+  EXPECT_EQ(write_scene(back.scene), text);
+  // The box of awkward_scene() moves without turning, which /2 must say; the rotating polygon
+  // and segment need no "rotates"; the fixed one does.
+  EXPECT_NE(text.find(R"("id": "box", "polygon": {"vertices": [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.3333333333333333, 0.1]]}, "position": [5.0, 1e-29], "mass": 0.30000000000000004, "rotates": false})"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find(R"("mass": 1.0, "angle": -0.0, "angular_velocity": 0.3333333333333333, "inertia": 0.1})"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find(R"("fixed": true, "rotates": true, "angle": 1000000.0, "angular_velocity": -10000.0})"),
+            std::string::npos)
+      << text;
+  // Without rotation the same writer writes /1.
+  EXPECT_NE(write_scene(awkward_scene()).find("\"format\": \"pge-scene/1\""), std::string::npos);
+}
+
+TEST(SceneIo, RotationDefaults) {
+  const std::string bodies = R"(
+      {"id": "box", "polygon": {"vertices": [[0, 0], [1, 0], [0, 1]]}, "mass": 2},
+      {"id": "rod", "segment": {"a": [5, 0], "b": [6, 0]}, "mass": 1},
+      {"id": "ball", "circle": {"radius": 1}, "position": [9, 0], "mass": 1},
+      {"id": "wall", "polygon": {"vertices": [[20, 0], [21, 0], [20, 1]]}, "fixed": true}])";
+  const Scene one = parse_scene(R"({"format": "pge-scene/1", "bodies": [)" + bodies + "}", "1.json").scene;
+  const Scene two = parse_scene(R"({"format": "pge-scene/2", "bodies": [)" + bodies + "}", "2.json").scene;
+  ASSERT_EQ(one.bodies.size(), 4u);
+  ASSERT_EQ(two.bodies.size(), 4u);
+  for (const BodyDesc& b : one.bodies) EXPECT_FALSE(b.rotates) << b.id;
+  EXPECT_TRUE(two.bodies[0].rotates);
+  EXPECT_TRUE(two.bodies[1].rotates);
+  EXPECT_FALSE(two.bodies[2].rotates);
+  EXPECT_FALSE(two.bodies[3].rotates);
+  for (const BodyDesc& b : two.bodies) {
+    expect_same(b.angle, 0, b.id + ".angle");
+    expect_same(b.angular_velocity, 0, b.id + ".angular_velocity");
+    expect_same(b.inertia, 0, b.id + ".inertia");
+  }
+}
+
+// The engine does not simulate rotation yet: a rotating body is refused by name, never moved
+// without turning; the same scene with "rotates": false runs exactly as its pge-scene/1 form.
+TEST(SceneIo, RotatingBodiesAreRefusedAndRotatesFalseIsTheFirstFormat) {
+  const std::string bodies = R"(
+      {"id": "box", "polygon": {"vertices": [[0, 0], [1, 0], [0, 1]]}, "velocity": [1, 0.5], "mass": 2ROT},
+      {"id": "wall", "segment": {"a": [5, -9], "b": [5, 9]}, "fixed": true}])";
+  auto scene = [&](const char* format, const char* rotates) {
+    std::string b = bodies;
+    b.replace(b.find("ROT"), 3, rotates);
+    return parse_scene(std::string(R"({"format": ")") + format + R"(", "run": {"until": 20}, "bodies": [)" + b + "}",
+                       "x.json")
+        .scene;
+  };
+  try {
+    World<double> world(scene("pge-scene/2", ""));
+    ADD_FAILURE() << "a rotating body was accepted";
+  } catch (const UnsupportedScene& e) {
+    EXPECT_EQ(e.body, 0);
+    EXPECT_NE(std::string(e.what()).find("body \"box\": rotates:"), std::string::npos) << e.what();
+  }
+  World<double> one(scene("pge-scene/1", ""));
+  World<double> two(scene("pge-scene/2", R"(, "rotates": false)"));
+  one.run();
+  two.run();
+  EXPECT_GT(one.counts().collisions, 0u);
+  EXPECT_EQ(one.counts().collisions, two.counts().collisions);
+  EXPECT_EQ(one.state_hash(), two.state_hash());
 }
 
 TEST(SceneIo, MaxEventsMayBeAnIntegralFloat) {
@@ -422,7 +535,7 @@ TEST(SceneErrors, DuplicateKey) {
 }
 
 TEST(SceneErrors, WrongFormat) {
-  parse_error(R"({"format": "pge-scene/2", "bodies": []})", "", "format", "pge-scene/1");
+  parse_error(R"({"format": "pge-scene/3", "bodies": []})", "", "format", "\"pge-scene/1\" or \"pge-scene/2\"");
   parse_error(R"({"format": 1, "bodies": []})", "", "format", "must be a string");
 }
 
@@ -489,6 +602,46 @@ TEST(SceneErrors, MotionOnAFixedBody) {
       scene_with_body(
           R"({"id": "wall", "segment": {"a": [0, 0], "b": [1, 0]}, "fixed": true, "mass": 3})"),
       "wall", "mass", "fixed body");
+}
+
+std::string scene2_with_body(const std::string& body) {
+  return R"({"format": "pge-scene/2", "bodies": [)" + body + "]}";
+}
+const std::string kBox = R"("polygon": {"vertices": [[0, 0], [1, 0], [0, 1]]})";
+
+TEST(SceneErrors, RotationNeedsFormat2) {
+  for (const char* key : {"rotates", "angle", "angular_velocity", "inertia"})
+    parse_error(scene_with_body(R"({"id": "box", )" + kBox + R"(, "mass": 1, ")" + key + R"(": 1})"), "box", key,
+                "needs \"format\": \"pge-scene/2\"");
+}
+
+TEST(SceneErrors, RotationValues) {
+  const std::string box = R"({"id": "box", )" + kBox + R"(, "mass": 1, )";
+  parse_error(scene2_with_body(box + R"("rotates": 1})"), "box", "rotates", "true or false");
+  parse_error(scene2_with_body(box + R"("angle": "0"})"), "box", "angle", "must be a number");
+  parse_error(scene2_with_body(box + R"("inertia": 0})"), "box", "inertia", "must be positive");
+  parse_error(scene2_with_body(box + R"("inertia": -2})"), "box", "inertia", "must be positive");
+  parse_error(scene2_with_body(box + R"("inertia": 1e31})"), "box", "inertia", "supported range");
+  parse_error(scene2_with_body(box + R"("angle": 1000001})"), "box", "angle", "supported range");
+  parse_error(scene2_with_body(box + R"("angle": 1e-31})"), "box", "angle", "supported range");
+  parse_error(scene2_with_body(box + R"("angular_velocity": -10001})"), "box", "angular_velocity",
+              "supported range");
+  parse_error(scene2_with_body(box + R"("angular_velocity": 5e-324})"), "box", "angular_velocity",
+              "supported range");
+}
+
+TEST(SceneErrors, RotationWhereItMeansNothing) {
+  parse_error(scene2_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "rotates": true})"), "ball",
+              "rotates", "a circle does not rotate");
+  parse_error(scene2_with_body(R"({"id": "ball", "circle": {"radius": 1}, "mass": 1, "angular_velocity": 3})"),
+              "ball", "angular_velocity", "only on a rotating body");
+  parse_error(scene2_with_body(R"({"id": "box", )" + kBox + R"(, "mass": 1, "rotates": false, "angle": -0.0})"),
+              "box", "angle", "only on a rotating body");
+  parse_error(scene2_with_body(R"({"id": "wall", )" + kBox + R"(, "fixed": true, "angle": 1})"), "wall", "angle",
+              "only on a rotating body");
+  parse_error(
+      scene2_with_body(R"({"id": "wall", )" + kBox + R"(, "fixed": true, "rotates": true, "inertia": 1})"),
+      "wall", "inertia", "fixed body");
 }
 
 TEST(SceneErrors, RestitutionRange) {

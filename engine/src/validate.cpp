@@ -11,6 +11,7 @@
 #include <limits>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace pge {
@@ -42,6 +43,35 @@ std::string scale_out_of_range(double x) {
          "], got " + fmt_num(x);
 }
 
+// The rotation fields (pge-scene/2): finite, in range, and only where they mean something.
+std::optional<SceneProblem> check_rotation(const BodyDesc& b, int i) {
+  auto problem = [&](std::string field, std::string msg) {
+    return std::optional<SceneProblem>(SceneProblem{i, std::move(field), std::move(msg)});
+  };
+  if (!std::isfinite(b.angle)) return problem("angle", "must be finite, got " + fmt_num(b.angle));
+  if (!std::isfinite(b.angular_velocity))
+    return problem("angular_velocity", "must be finite, got " + fmt_num(b.angular_velocity));
+  if (!(b.inertia >= 0 && std::isfinite(b.inertia)))
+    return problem("inertia", "must be positive and finite, got " + fmt_num(b.inertia));
+  if (!(in_range(b.angle) && std::abs(b.angle) <= kMaxAngle))
+    return problem("angle", "is out of the supported range: 0 or of magnitude in [" + fmt_num(kMinSceneScale) + ", " +
+                                fmt_num(kMaxAngle) + "] radians, got " + fmt_num(b.angle));
+  if (!(in_range(b.angular_velocity) && std::abs(b.angular_velocity) <= kMaxAngularVelocity))
+    return problem("angular_velocity", "is out of the supported range: 0 or of magnitude in [" +
+                                           fmt_num(kMinSceneScale) + ", " + fmt_num(kMaxAngularVelocity) +
+                                           "] rad/s, got " + fmt_num(b.angular_velocity));
+  if (b.inertia != 0 && !scale_in_range(b.inertia)) return problem("inertia", scale_out_of_range(b.inertia));
+  if (b.rotates && b.shape == ShapeKind::Circle)
+    return problem("rotates", "a circle does not rotate (without friction its spin never matters)");
+  if (!b.rotates) {
+    for (const auto& [field, value] : {std::pair<const char*, double>{"angle", b.angle},
+                                       {"angular_velocity", b.angular_velocity}, {"inertia", b.inertia}})
+      if (value != 0 || std::signbit(value)) return problem(field, "only on a rotating body (\"rotates\": true)");
+  }
+  if (b.fixed && b.inertia != 0) return problem("inertia", "not allowed on a fixed body (its inertia is infinite)");
+  return std::nullopt;
+}
+
 std::optional<SceneProblem> check_body(const BodyDesc& b, int i) {
   auto problem = [&](std::string field, std::string msg) {
     return std::optional<SceneProblem>(SceneProblem{i, std::move(field), std::move(msg)});
@@ -63,6 +93,7 @@ std::optional<SceneProblem> check_body(const BodyDesc& b, int i) {
   // needs thousand-bit integers and made one run take seconds.
   if (b.restitution > 0 && b.restitution < kMinSceneScale)
     return problem("restitution", "is out of the supported range: 0 or in [1e-30, 1], got " + fmt_num(b.restitution));
+  if (auto p = check_rotation(b, i)) return p;
   switch (b.shape) {
     case ShapeKind::Circle:
       if (!(std::isfinite(b.radius) && b.radius > 0))

@@ -23,6 +23,11 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
     throw UnsupportedScene(-1, std::to_string(scene.bodies.size()) + " bodies: at most " +
                                    std::to_string(kMaxBodiesWithoutBroadPhase) +
                                    " without the broad phase (every pair is predicted once at the start)");
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    if (scene.bodies[i].rotates)
+      throw UnsupportedScene(static_cast<int>(i), "body \"" + scene.bodies[i].id +
+                                                      "\": rotates: rotating bodies are not simulated yet (docs/rotation.md); "
+                                                      "give \"rotates\": false to move it without turning");
   Impl& w = *impl_;
   w.horizon = T(options.until >= 0 ? options.until : scene.run.until);
   w.solver = options.solver.value_or(scene.run.solver);

@@ -1,4 +1,4 @@
-// Reading "pge-scene/1" files. The format is documented in fixtures/README.md.
+// Reading "pge-scene/1" and "pge-scene/2" files. The format is documented in fixtures/README.md.
 #include "json_path.hpp"
 #include "json_text.hpp"
 #include "pge/scene_io.hpp"
@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -23,7 +24,11 @@ namespace {
 
 using Json = nlohmann::json;
 
-constexpr std::string_view kFormat = "pge-scene/1";
+// pge-scene/2 adds the rotation keys, and makes moving polygons and segments rotate unless they
+// say "rotates": false; every pge-scene/1 body is translate-only.
+constexpr std::string_view kFormat1 = "pge-scene/1";
+constexpr std::string_view kFormat2 = "pge-scene/2";
+constexpr std::array<const char*, 4> kRotationKeys = {"rotates", "angle", "angular_velocity", "inertia"};
 // The deepest nesting of [ and { a file may have (documented in fixtures/README.md). A scene
 // needs 6 (the file, "bodies", a body, "polygon", "vertices", a vertex) and an expect block
 // about as many; the limit is far above both and far below what would make a 100,000-deep
@@ -221,14 +226,15 @@ class SceneReader {
 
   // --- the scene -----------------------------------------------------------------------------
 
-  Scene read_scene(const Json& root) const {
+  Scene read_scene(const Json& root) {
     const JsonPath top;
     object_at(root, top);
     // The format first: for a file that is not a scene, the other complaints would mislead.
     const std::string format = string_at(required(root, top, "format"), top + "format");
-    if (format != kFormat)
-      fail(top + "format",
-           fmt::format("must be \"{}\", got {}", kFormat, describe(root["format"])));
+    if (format != kFormat1 && format != kFormat2)
+      fail(top + "format", fmt::format("must be \"{}\" or \"{}\", got {}", kFormat1, kFormat2,
+                                       describe(root["format"])));
+    rotation_ = format == kFormat2;
     allow_keys(root, top, {"format", "name", "world", "bodies", "run", "expect"});
 
     Scene scene;
@@ -300,9 +306,20 @@ class SceneReader {
 
   BodyDesc read_body(const Json& value, const JsonPath& path) const {
     const Json& body = object_at(value, path);
-    allow_keys(body, path,
-               {"id", "circle", "segment", "polygon", "position", "velocity", "acceleration",
-                "fixed", "mass", "gravity", "restitution"});
+    if (!rotation_) {
+      for (const char* key : kRotationKeys)
+        if (body.contains(key))
+          fail(path + key, fmt::format("needs \"format\": \"{}\" (a {} body does not rotate)", kFormat2,
+                                       kFormat1));
+    }
+    if (rotation_)
+      allow_keys(body, path,
+                 {"id", "circle", "segment", "polygon", "position", "velocity", "acceleration", "fixed", "mass",
+                  "gravity", "restitution", "rotates", "angle", "angular_velocity", "inertia"});
+    else
+      allow_keys(body, path,
+                 {"id", "circle", "segment", "polygon", "position", "velocity", "acceleration",
+                  "fixed", "mass", "gravity", "restitution"});
     BodyDesc out;
     out.id = string_at(required(body, path, "id"), path + "id");
     if (out.id.empty()) fail(path + "id", "must not be empty");
@@ -324,7 +341,25 @@ class SceneReader {
     if (body.contains("gravity")) out.gravity = bool_at(body["gravity"], path + "gravity");
     if (body.contains("restitution"))
       out.restitution = fraction_at(body["restitution"], path + "restitution");
+    if (rotation_) read_rotation(body, path, out);
     return out;
+  }
+
+  // pge-scene/2: moving polygons and segments rotate unless they say otherwise; a fixed body
+  // rotates only when it says so. Ranges and where each key may appear are validate_scene's.
+  void read_rotation(const Json& body, const JsonPath& path, BodyDesc& out) const {
+    out.rotates = !out.fixed && out.shape != ShapeKind::Circle;
+    if (body.contains("rotates")) out.rotates = bool_at(body["rotates"], path + "rotates");
+    if (body.contains("angle")) out.angle = number_at(body["angle"], path + "angle");
+    if (body.contains("angular_velocity"))
+      out.angular_velocity = number_at(body["angular_velocity"], path + "angular_velocity");
+    if (body.contains("inertia")) {
+      out.inertia = number_at(body["inertia"], path + "inertia");
+      // In memory 0 means "computed from the shape"; in a file it is a mistake.
+      if (!(out.inertia > 0))
+        fail(path + "inertia", "must be positive (leave it out for a uniform lamina), got " +
+                                   describe(body["inertia"]));
+    }
   }
 
   void read_shape(const Json& body, const JsonPath& path, BodyDesc& out) const {
@@ -362,6 +397,7 @@ class SceneReader {
 
   std::string_view text_;
   std::string origin_;
+  bool rotation_ = false;  // a pge-scene/2 file
 };
 
 }  // namespace

@@ -1,9 +1,11 @@
-// Writing "pge-scene/1" files: one body per line, doubles in shortest round-trip form.
+// Writing scene files: one body per line, doubles in shortest round-trip form; "pge-scene/1"
+// unless a body has rotation, then "pge-scene/2".
 #include "pge/scene_io.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <cstdint>
@@ -55,9 +57,17 @@ const char* shape_key(ShapeKind kind) {
   return "";
 }
 
+// Whether a body has anything of rotation (pge-scene/2), bitwise: -0.0 too must round-trip.
+bool has_rotation(const BodyDesc& body) {
+  const BodyDesc defaults;
+  return body.rotates != defaults.rotates || !same_bits(body.angle, defaults.angle) ||
+         !same_bits(body.angular_velocity, defaults.angular_velocity) || !same_bits(body.inertia, defaults.inertia);
+}
+
 // A fixed body's velocity, acceleration and mass are written only when they are not the
 // defaults, which the reader then rejects: better a loud file than a silently changed scene.
-Json body_json(const BodyDesc& body) {
+// `rotation`: the file is pge-scene/2, whose default for "rotates" depends on the body.
+Json body_json(const BodyDesc& body, bool rotation) {
   const BodyDesc defaults;
   Json out = Json::object();
   out["id"] = body.id;
@@ -73,6 +83,14 @@ Json body_json(const BodyDesc& body) {
   // out: written as it is, it would not read back (found by fuzz_engine, whose byte decoder
   // gives bodies negative restitutions; the failing scene it printed was unreadable).
   if (!(body.restitution < 0)) out["restitution"] = body.restitution;
+  if (rotation) {
+    const bool rotates_by_default = !body.fixed && body.shape != ShapeKind::Circle;
+    if (body.rotates != rotates_by_default) out["rotates"] = body.rotates;
+    if (!same_bits(body.angle, defaults.angle)) out["angle"] = body.angle;
+    if (!same_bits(body.angular_velocity, defaults.angular_velocity))
+      out["angular_velocity"] = body.angular_velocity;
+    if (!same_bits(body.inertia, defaults.inertia)) out["inertia"] = body.inertia;
+  }
   return out;
 }
 
@@ -132,9 +150,10 @@ std::string write_scene(const Scene& scene, std::string_view expect_json) {
     run["frames_per_second"] = scene.run.frames_per_second;
   if (scene.run.solver != RunDesc{}.solver) run["solver"] = std::string(solver_name(scene.run.solver));
 
+  const bool rotation = std::any_of(scene.bodies.begin(), scene.bodies.end(), has_rotation);
   try {
     std::string out = "{\n";
-    out += fmt::format("  \"format\": \"pge-scene/1\",\n");
+    out += fmt::format("  \"format\": \"{}\",\n", rotation ? "pge-scene/2" : "pge-scene/1");
     out += fmt::format("  \"name\": {},\n", Json(scene.name).dump());
     out += fmt::format("  \"world\": {},\n", inline_json(world));
     if (scene.bodies.empty()) {
@@ -142,7 +161,7 @@ std::string write_scene(const Scene& scene, std::string_view expect_json) {
     } else {
       out += "  \"bodies\": [\n";
       for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-        out += "    " + inline_json(body_json(scene.bodies[i]));
+        out += "    " + inline_json(body_json(scene.bodies[i], rotation));
         out += i + 1 < scene.bodies.size() ? ",\n" : "\n";
       }
       out += "  ],\n";

@@ -177,4 +177,14 @@ inline constexpr std::size_t kMaxPolygonVertices = 1024;
 // the difference is noise and no cell bookkeeping is simpler to follow.
 inline constexpr std::size_t kGridMinMovingBodies = 16;
 
+// Rotation (pge-scene/2). The rigorous sine and cosine (detail/interval.hpp) reduce an angle
+// exactly only below 2^25 rad (3.4e7) in double; past it their enclosure is [-1, 1] and no
+// contact of the body can be decided. A starting angle is at most kMaxAngle in magnitude and a
+// rate at most kMaxAngularVelocity (1,600 turns a second), so that a body starting at the limit
+// turns for 54 minutes of simulated time without an event before it reaches 2^25. Both are 0 or of
+// magnitude at least kMinSceneScale, like every other value. A body's inertia lies in
+// [kMinSceneScale, kMaxSceneMagnitude] like its mass.
+inline constexpr double kMaxAngle = 1e6;
+inline constexpr double kMaxAngularVelocity = 1e4;
+
 }  // namespace pge

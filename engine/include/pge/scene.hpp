@@ -28,6 +28,16 @@ struct BodyDesc {
   double mass = 1;               // moving bodies only; > 0
   bool gravity = true;           // whether world gravity acts on this (moving) body
   double restitution = -1;       // < 0: use the world's restitution
+  // Rotation (pge-scene/2; docs/rotation.md). A rotating body's angle is angle + angular_velocity
+  // (t - t0) between events. A moving polygon turns about its centroid, a moving segment about
+  // its midpoint, a fixed body about `position`; `position` stays the reference point of the
+  // shape's coordinates at every angle. Circles never rotate. The defaults are a translate-only
+  // body, which is every body of a pge-scene/1 file.
+  bool rotates = false;
+  double angle = 0;              // radians, rotating bodies only
+  double angular_velocity = 0;   // rad/s, rotating bodies only
+  double inertia = 0;            // about the centroid; 0: a uniform lamina (a segment: a thin rod)
+                                 // of the body's mass; moving rotating bodies only
 };
 
 struct WorldDesc {

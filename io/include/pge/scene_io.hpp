@@ -1,4 +1,4 @@
-// Reading and writing scene files (JSON, format "pge-scene/1", see fixtures/README.md): the
+// Reading and writing scene files (JSON, format "pge-scene/1", or "pge-scene/2" with rotation; see fixtures/README.md): the
 // pge::Scene (pge/scene.hpp) that World, the referee and judge_trace take. Units are the file's:
 // seconds, metres, kilograms (m/s, m/s^2); nothing is converted. Link pge::io.
 //
