@@ -153,7 +153,8 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   c.final_states.reserve(c.bodies);
   for (BodyIndex i = 0; i < c.bodies; ++i) {
     const BodySnapshot<T> s = world.snapshot(i);
-    c.final_states.push_back({vec_cast<double>(s.position), vec_cast<double>(s.velocity)});
+    c.final_states.push_back({vec_cast<double>(s.position), vec_cast<double>(s.velocity), to_double(s.angle),
+                              to_double(s.angular_velocity)});
   }
   c.largest_contact_overlap = to_double(world.largest_contact_overlap().relative);
   c.tunnels = world.tunnels();

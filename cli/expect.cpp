@@ -191,12 +191,15 @@ class ExpectParser {
       const std::string at = fmt::format("{}[{}]", path, k);
       const Json& item = value[k];
       object(item, at);
-      allow_keys(item, at, {"body", "position", "velocity", "tolerance"});
+      allow_keys(item, at, {"body", "position", "velocity", "angle", "angular_velocity", "tolerance"});
       ExpectedFinal f;
       f.body = body(required(item, at, "body"), at + ".body");
       if (item.contains("position")) f.position = vector(item["position"], at + ".position");
       if (item.contains("velocity")) f.velocity = vector(item["velocity"], at + ".velocity");
-      if (!f.position && !f.velocity) fail(at, "must hold \"position\" or \"velocity\"");
+      if (item.contains("angle")) f.angle = number(item["angle"], at + ".angle");
+      if (item.contains("angular_velocity")) f.angular_velocity = number(item["angular_velocity"], at + ".angular_velocity");
+      if (!f.position && !f.velocity && !f.angle && !f.angular_velocity)
+        fail(at, "must hold \"position\", \"velocity\", \"angle\" or \"angular_velocity\"");
       if (item.contains("tolerance")) f.tolerance = non_negative(item["tolerance"], at + ".tolerance");
       e.finals.push_back(f);
     }
@@ -359,6 +362,15 @@ void evaluate(const Expect& e, const Scene& scene, const ExpectTracker& tracker,
     };
     check_final("position", f.position, s.position);
     check_final("velocity", f.velocity, s.velocity);
+    const auto check_turn = [&](const char* what, const std::optional<double>& expected, double measured) {
+      if (!expected) return;
+      x.check(fmt::format("final[{}].{}", k, what), std::abs(measured - *expected) <= f.tolerance, [&] {
+        return fmt::format("expected body \"{}\" to end with {} {} (tolerance {:.3g}), measured {}", x.id(f.body), what,
+                           *expected, f.tolerance, measured);
+      });
+    };
+    check_turn("angle", f.angle, s.angle);
+    check_turn("angular_velocity", f.angular_velocity, s.angular_velocity);
   }
   for (std::size_t k = 0; k < e.collisions.size(); ++k) {
     const ExpectedCollision& ec = e.collisions[k];

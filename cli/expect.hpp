@@ -21,6 +21,7 @@ struct SceneCheck;
 struct ExpectedFinal {
   BodyIndex body = kNoBody;
   std::optional<Vec2d> position, velocity;
+  std::optional<double> angle, angular_velocity;  // rad, rad/s (World::snapshot)
   double tolerance = 0;  // absolute, per component
 };
 

@@ -39,6 +39,8 @@ template <class T> struct PredictedContact {
   std::uint16_t feature_b;
   bool at_start_overlap;
   bool corner = false;  // a vertex against an edge's end: the corner rule decides the normal
+  bool rotating = false;  // a pair with a rotating body (world_rotation.hpp): no exact refinement
+  bool resume = false;    // rotating: no contact before `time`, predict again then (Scheduled::resume)
 
   bool before(const PredictedContact& o) const {
     if (time != o.time) return time < o.time;

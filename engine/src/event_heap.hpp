@@ -30,6 +30,9 @@ template <class T> struct Scheduled {
   // Not a contact: the owner, resting on the fixed body `partner`, slides off the end of that
   // face (support slot feature_a) at `time` (resting contact, world_rest.hpp).
   bool leave = false;
+  // Not a contact: the rotating predictor's search for this pair ran out of its box budget
+  // (world_rotation.hpp); nothing touches before `time`, where the owner is predicted again.
+  bool resume = false;
 
   bool valid() const { return lo != kNoBody; }
 

@@ -127,7 +127,8 @@ FixedBodies::FixedBodies(const Scene& scene) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDesc& b = scene.bodies[i];
     offsets_.push_back(b.fixed ? std::nullopt : interior_offset(b));
-    if (!b.fixed) continue;
+    // A spinning fixed body (a turnstile) has no fixed outline to pass through: not watched.
+    if (!b.fixed || b.rotates) continue;
     Placed f;
     f.index = static_cast<BodyIndex>(i);
     if (b.shape == ShapeKind::Circle) {

@@ -151,8 +151,11 @@ struct WorldOutline {
   const BodyDesc& body;
   std::size_t size() const { return body.shape == ShapeKind::Segment ? 2 : body.vertices.size(); }
   Vec2d operator()(std::size_t k) const {
-    if (body.shape == ShapeKind::Segment) return body.position + (k == 0 ? body.a : body.b);
-    return body.position + body.vertices[k];
+    const Vec2d r = body.shape == ShapeKind::Segment ? (k == 0 ? body.a : body.b) : body.vertices[k];
+    if (body.angle == 0) return body.position + r;
+    // A turned body (pge-scene/2): its coordinates turn about `position` by `angle`.
+    const double c = std::cos(body.angle), s = std::sin(body.angle);
+    return body.position + Vec2d{c * r.x - s * r.y, s * r.x + c * r.y};
   }
 };
 

@@ -22,16 +22,42 @@ template <class T> bool World<T>::is_fixed(BodyIndex i) const { return impl_->bo
 template <class T> T World<T>::mass(BodyIndex i) const { return impl_->bodies.at(i).mass; }
 
 template <class T> BodySnapshot<T> World<T>::snapshot(BodyIndex i) const {
-  const Kinematics<T> k = impl_->kinematics(impl_->bodies.at(i), impl_->now);
-  return {k.p, k.v};
+  const auto& b = impl_->bodies.at(i);
+  const Kinematics<T> k = impl_->kinematics(b, impl_->now);
+  if (!b.rotates) return {k.p, k.v};
+  const auto& r = impl_->spin_of(b);
+  const T angle = impl_->angle_at(b, impl_->now);
+  return {k.p - detail::rotated(angle, r.pivot), k.v, angle, r.omega};
 }
 
 template <class T> BodyMotion<T> World<T>::motion(BodyIndex i) const {
   const auto& b = impl_->bodies.at(i);
-  if (b.fixed) return {T(0), b.p0, Vec2<T>{}, Vec2<T>{}};
-  BodyMotion<T> m{b.t0, b.p0, b.v0, b.acc};
+  BodyMotion<T> m;
+  m.p0 = b.p0;
+  if (b.rotates) {
+    m.theta0 = impl_->spin_of(b).theta0;
+    m.omega = impl_->spin_of(b).omega;
+  }
+  if (b.fixed) return m;
+  m.t0 = b.t0;
+  m.v0 = b.v0;
+  m.acc = b.acc;
   for (int k = 0; k < b.supports; ++k) m.supports[static_cast<std::size_t>(k)] = b.support[static_cast<std::size_t>(k)].body;
   return m;
+}
+template <class T> bool World<T>::rotates(BodyIndex i) const { return impl_->bodies.at(i).rotates; }
+template <class T> const std::vector<Vec2<T>>& World<T>::pivot_vertices(BodyIndex i) const {
+  static const std::vector<Vec2<T>> kNone;
+  const auto& b = impl_->bodies.at(i);
+  return b.rotates ? impl_->spin_of(b).vertices : kNone;
+}
+template <class T> Vec2<T> World<T>::pivot(BodyIndex i) const {
+  const auto& b = impl_->bodies.at(i);
+  return b.rotates ? impl_->spin_of(b).pivot : Vec2<T>{};
+}
+template <class T> T World<T>::inertia(BodyIndex i) const {
+  const auto& b = impl_->bodies.at(i);
+  return b.rotates ? impl_->spin_of(b).inertia : T(0);
 }
 template <class T> Vec2<T> World<T>::field_acceleration(BodyIndex i) const {
   const auto& b = impl_->bodies.at(i);
@@ -88,6 +114,7 @@ template <class T> T World<T>::kinetic_energy() const {
     const auto& b = impl_->bodies[i];
     const Vec2<T> v = impl_->kinematics(b, impl_->now).v;
     e += b.mass * dot(v, v) / T(2);
+    if (b.rotates) e += impl_->spin_of(b).inertia * impl_->spin_of(b).omega * impl_->spin_of(b).omega / T(2);
   }
   return e;
 }
@@ -119,9 +146,12 @@ template <class T> typename World<T>::Overlap World<T>::largest_overlap() const 
       const auto& b = w.bodies[j];
       if (a.fixed && b.fixed) continue;
       const Kinematics<T> ka = w.kinematics(a, w.now), kb = w.kinematics(b, w.now);
-      const Separation<T> sep = separation(a.shape, ka.p, b.shape, kb.p);
+      const bool turning = a.rotates || b.rotates;
+      const Separation<T> sep = w.separation_at(a, b, w.now);
       const Overlap o = Impl::measure_overlap(-sep.gap, sep.contact_distance,
-                                              Impl::rounding_scale(a.shape, ka, b.shape, kb, w.now), i, j);
+                                              turning ? w.rotating_rounding_scale(a, b, w.now)
+                                                      : Impl::rounding_scale(a.shape, ka, b.shape, kb, w.now),
+                                              i, j);
       if (o.ulps > worst.ulps) worst = o;
     }
   }
@@ -139,6 +169,10 @@ template <class T> std::uint64_t World<T>::state_hash() const {
     h.add(k.p.y);
     h.add(k.v.x);
     h.add(k.v.y);
+    if (impl_->bodies[i].rotates) {
+      h.add(impl_->angle_at(impl_->bodies[i], impl_->now));
+      h.add(impl_->spin_of(impl_->bodies[i]).omega);
+    }
   }
   return h.value();
 }

@@ -167,8 +167,9 @@ template <class T> inline auto World<T>::Impl::setup_grid(BroadPhase mode) -> vo
 }
 
 template <class T> inline auto World<T>::Impl::fixed_box(const Body& b) -> std::array<double, 4> {
-  if (!b.shape.is_outline()) {
-    const double x = to_double(b.p0.x), y = to_double(b.p0.y), r = to_double(b.shape.radius);
+  if (!b.shape.is_outline() || b.rotates) {  // a spinning body sweeps its bounding circle
+    const double x = to_double(b.p0.x), y = to_double(b.p0.y);
+    const double r = to_double(b.rotates ? b.shape.reach : b.shape.radius) * (1 + 0x1p-20);
     return {x - r, y - r, x + r, y + r};
   }
   std::array<double, 4> box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
@@ -251,8 +252,7 @@ template <class T> inline auto World<T>::Impl::schedule_all() -> void {
     for (BodyIndex j = i + 1; j < bodies.size(); ++j) {
       auto c = predict(i, j);
       if (!c) continue;
-      Scheduled<T> s{c->time, i, j, c->contact, c->feature_a, c->feature_b, c->at_start_overlap, c->corner, j,
-                     bodies[j].version};
+      Scheduled<T> s = scheduled(*c, i, j, j);
       if (!bodies[i].fixed && s.key_less(best[i])) best[i] = s;
       s.partner = i;
       s.partner_version = bodies[i].version;

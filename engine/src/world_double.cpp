@@ -6,6 +6,7 @@
 #include "world_broad_phase.hpp"
 #include "world_rest.hpp"
 #include "world_response.hpp"
+#include "world_rotation.hpp"
 #include "world_validate.hpp"
 
 namespace pge {

@@ -23,12 +23,9 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
     throw UnsupportedScene(-1, std::to_string(scene.bodies.size()) + " bodies: at most " +
                                    std::to_string(kMaxBodiesWithoutBroadPhase) +
                                    " without the broad phase (every pair is predicted once at the start)");
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-    if (scene.bodies[i].rotates)
-      throw UnsupportedScene(static_cast<int>(i), "body \"" + scene.bodies[i].id +
-                                                      "\": rotates: rotating bodies are not simulated yet (docs/rotation.md); "
-                                                      "give \"rotates\": false to move it without turning");
   Impl& w = *impl_;
+  if (std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const BodyDesc& d) { return d.rotates; }))
+    w.spins.resize(scene.bodies.size());
   w.horizon = T(options.until >= 0 ? options.until : scene.run.until);
   w.solver = options.solver.value_or(scene.run.solver);
   w.max_events = options.max_events > 0 ? options.max_events : scene.run.max_events;
@@ -65,6 +62,7 @@ template <class T> World<T>::World(const Scene& scene, const WorldOptions& optio
       b.field_acc = b.acc;
       w.moving.push_back(static_cast<BodyIndex>(i));
     }
+    if (d.rotates) w.setup_spin(i, b, d);
     w.bodies.push_back(std::move(b));
   }
   w.heap.reset(w.bodies.size(), w.moving);
@@ -157,6 +155,14 @@ template <class T> bool World<T>::step() {
       w.watch_path(owner);
       w.leave(s, owner);
       if (w.on_motion_change) w.on_motion_change(owner, w.now);
+      continue;
+    }
+    if (kind == EventKind::Collision && contact->resume) {
+      // A rotating pair's search that ran out of its budget: nothing touches before this time,
+      // and the owner is predicted again from it (no motion changes).
+      const BodyIndex owner = w.heap.top_index();
+      w.now = std::max(w.now, contact->time);
+      w.reschedule(owner);
       continue;
     }
     if (kind == EventKind::Collision) {

@@ -16,6 +16,7 @@
 //   world_broad_phase.hpp  broad phase and scheduling: candidates, cell crossings, the heap
 //   world_rest.hpp         resting contact
 //   world_response.hpp     the impulse of a collision, storms, overlap measures
+//   world_rotation.hpp     pairs with a rotating body: prediction, impulse, overlap measures
 //   world_validate.hpp     PGE_VALIDATE checks and the tunnel watch
 // The parts are included by one translation unit per scalar (world_float.cpp,
 // world_double.cpp, world_long_double.cpp, world_quad.cpp), each instantiating World for its
@@ -34,6 +35,9 @@
 #include "contact.hpp"
 #include "event_heap.hpp"
 #include "refine.hpp"
+
+#include "pge/detail/predict_rotating.hpp"
+#include "pge/detail/rigid.hpp"
 #include "tunnel_watch.hpp"
 
 #include <boost/math/special_functions/next.hpp>
@@ -75,6 +79,10 @@ template <class T> struct World<T>::Impl {
   struct alignas(64) Body {
     bool fixed = false;
     std::uint8_t supports = 0;  // faces in `support` that hold the body
+    // Turns (docs/rotation.md): its angle, spin and pivot frame are in `spins`, and its path
+    // p0, v0, acc is its pivot's. Every pair with such a body is predicted and answered by the
+    // rotation subsystem (world_rotation.hpp), never by the translate-only code.
+    bool rotates = false;
     // With the grid on: a moving body's cell, or kInCells, kOutside or kGlobal (see Impl). Here
     // rather than in an array of its own, where each event's bodies would cost one more miss.
     std::uint32_t cell = CellGrid::kGlobal;
@@ -106,6 +114,18 @@ template <class T> struct World<T>::Impl {
     }
   };
 
+  // A rotating body's turn (docs/rotation.md). The angle is theta0 + omega (t - t0) with the
+  // body's t0 (0 for a fixed body), and a vertex of the body is at p(t) + R(angle) vertices[k]:
+  // `vertices` are the shape's points about the pivot in the body's frame, `pivot` the pivot
+  // relative to the scene's `position` at angle 0 (a moving polygon's centroid, a moving
+  // segment's midpoint, zero for a fixed body), so the scene's position is p(t) - R(angle) pivot.
+  struct Spin {
+    T theta0{}, omega{};
+    T inertia{}, inv_inertia{};  // 0 and 0 for a fixed body
+    Vec2<T> pivot;
+    std::vector<Vec2<T>> vertices;
+  };
+
   struct Timer {
     T time;
     std::uint64_t seq;
@@ -115,6 +135,7 @@ template <class T> struct World<T>::Impl {
 
   std::vector<Body, CacheAligned<Body>> bodies;
   std::vector<BodyIndex> moving;         // indices of moving bodies, ascending
+  std::vector<Spin> spins;               // per body when any body rotates; empty otherwise
   EventHeap<T> heap;                     // per moving body: its next contact and cell crossing
 
   // ---- Broad phase state (broad_phase.hpp). With the grid off every body is a candidate of every
@@ -161,11 +182,49 @@ template <class T> struct World<T>::Impl {
 
   void rebase(Body& b, const T& t) {
     if (b.fixed) return;
+    if (b.rotates) {
+      Spin& r = spin_of(b);
+      r.theta0 = r.theta0 + r.omega * (t - b.t0);
+    }
     const Kinematics<T> k = kinematics(b, t);
     b.p0 = k.p;
     b.v0 = k.v;
     b.t0 = t;
   }
+
+  // ---- Rotation (world_rotation.hpp): pairs of which one or both bodies turn.
+  Spin& spin_of(const Body& b) { return spins[static_cast<std::size_t>(&b - bodies.data())]; }
+  const Spin& spin_of(const Body& b) const { return spins[static_cast<std::size_t>(&b - bodies.data())]; }
+  T angle_at(const Body& b, const T& t) const {
+    if (!b.rotates) return T(0);
+    const Spin& r = spin_of(b);
+    return r.theta0 + r.omega * (t - (b.fixed ? T(0) : b.t0));
+  }
+  // The body's construction-time rotation state from its scene description (pivot, inertia,
+  // vertices about the pivot, reach); p0 moves from the scene's position to the pivot.
+  void setup_spin(std::size_t i, Body& b, const BodyDesc& d);
+  // The body as the rotating predictor reads it: its stored path (pivot, angle) and its shape
+  // about the path's point (a body that does not turn: angle 0, the shape about its position).
+  detail::RotatingShape<T> rotating_shape(const Body& b) const;
+  // The earliest contact of a pair with a rotating body, from now to the horizon
+  // (detail::predict_rotating_pair; every solver uses it for now: docs/rotation.md). A search
+  // that ran out of its box budget is a `resume` entry at the time up to which nothing touches.
+  std::optional<PredictedContact<T>> predict_rotating(BodyIndex lo, BodyIndex hi);
+  // A scheduled contact of a rotating pair as the predictor's contact record, at time t.
+  detail::RotatingContact<T> rotating_record(const Scheduled<T>& s, const T& t) const;
+  // The contact's point and normal (from lo towards hi) at time t.
+  detail::RotatingGeometry<T> rotating_geometry(const Scheduled<T>& s, const T& t) const;
+  // Whether the contact points approach at s.time (the impulse test).
+  bool rotating_approaching(const Scheduled<T>& s) const;
+  // The collision of a rotating pair at now: the impulse with lever arms (detail/rigid.hpp).
+  void collide_rotating(const Scheduled<T>& s);
+  // A body's vertex k in world coordinates at time t (rotating or not).
+  Vec2<T> world_vertex(const Body& b, std::size_t k, const T& t) const;
+  // Separation of two bodies at time t, either rotating, as `separation` measures it.
+  Separation<T> separation_at(const Body& a, const Body& b, const T& t) const;
+  // A pair's rounding scale at time t (rounding_scale), for pairs with a rotating body: each
+  // body's position magnitude plus its reach.
+  T rotating_rounding_scale(const Body& a, const Body& b, const T& t) const;
 
   // ---- Narrow phase (world_predict.hpp): a pair's earliest contact.
   // The earliest contact of the pair (lo < hi) from `now` to the horizon.
@@ -213,6 +272,9 @@ template <class T> struct World<T>::Impl {
 
   // Offers the pair (i, j)'s earliest contact to `best`, the owner i's candidate event.
   void offer(BodyIndex i, BodyIndex j, Scheduled<T>& best);
+  // The queue entry of the pair (lo, hi)'s predicted contact c, seen from the body whose partner
+  // is `partner`.
+  Scheduled<T> scheduled(const PredictedContact<T>& c, BodyIndex lo, BodyIndex hi, BodyIndex partner) const;
 
   // ---- Refinement (world_refine.hpp): scheduled contacts re-derived from the exact paths.
   // A scheduled contact's time, correctly rounded from the exact paths (refine.hpp); nothing if
@@ -504,6 +566,11 @@ template <class T> struct World<T>::Impl {
   bool approaching(const Scheduled<T>& s) const;
   void note_storm(BodyIndex i, BodyIndex partner);
   void collide(const Scheduled<T>& s);
+  // What every collision's report starts with: the pair, features and velocities before (at now).
+  CollisionInfo<T> collision_info(const Scheduled<T>& s, const Kinematics<T>& ka, const Kinematics<T>& kb) const;
+  // What every collision ends with, translating or rotating: the worst overlap, versions,
+  // storms, rescheduling, the callback and the collision budget.
+  void finish_collision(const Scheduled<T>& s, const CollisionInfo<T>& info, const Overlap& o);
 
   // The length at which a pair's contact is rounded, in units of epsilon: its largest coordinate
   // magnitude (vertices included), plus how far it closes in the time it takes the clock to

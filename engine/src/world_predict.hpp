@@ -16,6 +16,7 @@ inline auto World<T>::Impl::predict(BodyIndex lo, BodyIndex hi) -> std::optional
   if (a.rests_on(hi) || b.rests_on(lo)) return std::nullopt;  // touching all along: no event
   if (continues_support(a, b) || continues_support(b, a)) return std::nullopt;  // a joint: no event
   ++counts.predictions;
+  if (a.rotates || b.rotates) return predict_rotating(lo, hi);
   const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
   std::optional<PredictedContact<T>> c;
   if (solver != SolverKind::Fast && a.shape.kind == ShapeKind::Circle && b.shape.kind == ShapeKind::Circle) {
@@ -136,9 +137,20 @@ template <class T> inline auto World<T>::Impl::offer(BodyIndex i, BodyIndex j, S
   const BodyIndex lo = std::min(i, j), hi = std::max(i, j);
   auto c = predict(lo, hi);
   if (!c) return;
-  Scheduled<T> s{c->time, lo, hi, c->contact, c->feature_a, c->feature_b, c->at_start_overlap, c->corner,
-                 j, bodies[j].version};
+  const Scheduled<T> s = scheduled(*c, lo, hi, j);
   if (s.key_less(best)) best = s;
+}
+
+template <class T>
+inline auto World<T>::Impl::scheduled(const PredictedContact<T>& c, BodyIndex lo, BodyIndex hi, BodyIndex partner) const
+    -> Scheduled<T> {
+  Scheduled<T> s{c.time, lo, hi, c.contact, c.feature_a, c.feature_b, c.at_start_overlap, c.corner,
+                 partner, bodies[partner].version};
+  if (c.rotating) {
+    s.refined = true;  // the exact refinement is the translate-only paths'; see world_rotation.hpp
+    s.resume = c.resume;
+  }
+  return s;
 }
 
 }  // namespace pge

@@ -9,6 +9,7 @@ namespace pge {
 template <class T> inline auto World<T>::Impl::approaching(const Scheduled<T>& s) const -> bool {
   const Body& a = bodies[s.lo];
   const Body& b = bodies[s.hi];
+  if (a.rotates || b.rotates) return rotating_approaching(s);
   const Kinematics<T> ka = kinematics(a, s.time), kb = kinematics(b, s.time);
   const PredictedContact<T> contact{s.time, s.contact, s.feature_a, s.feature_b, s.at_start_overlap, s.corner};
   const ContactGeometry<T> g = contact_geometry(contact, a.shape, ka, b.shape, kb);
@@ -41,25 +42,19 @@ template <class T> inline auto World<T>::Impl::collide(const Scheduled<T>& s) ->
     if (!a.fixed) prefetch_candidates(s.lo);
     if (!b.fixed) prefetch_candidates(s.hi);
   }
+  if (a.rotates || b.rotates) {
+    collide_rotating(s);
+    return;
+  }
   rebase(a, now);
   rebase(b, now);
   const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
   const PredictedContact<T> contact{now, s.contact, s.feature_a, s.feature_b, s.at_start_overlap, s.corner};
   const ContactGeometry<T> g = contact_geometry(contact, a.shape, ka, b.shape, kb);
 
-  CollisionInfo<T> info;
-  info.time = now;
-  info.a = s.lo;
-  info.b = s.hi;
-  info.contact = s.contact;
-  info.feature_a = s.contact == ContactKind::EdgeVertex ? public_edge(a.shape, s.feature_a) : s.feature_a;
-  info.feature_b = s.contact == ContactKind::VertexEdge ? public_edge(b.shape, s.feature_b) : s.feature_b;
-  info.corner = s.corner;
+  CollisionInfo<T> info = collision_info(s, ka, kb);
   info.point = g.point;
   info.gap = g.gap;
-  info.at_start_overlap = s.at_start_overlap;
-  info.va_before = ka.v;
-  info.vb_before = kb.v;
 
   // Impulse along the (unnormalised) normal n: j = -(1 + e) (v_rel . n) / (n . n (1/ma + 1/mb)).
   // An axis-aligned normal is replaced by the exact unit vector along it first: equal masses
@@ -95,7 +90,30 @@ template <class T> inline auto World<T>::Impl::collide(const Scheduled<T>& s) ->
   info.va_after = a.v0;
   info.vb_after = b.v0;
 
-  const Overlap o = measure_overlap(-g.gap, g.contact_distance, rounding_scale(a.shape, ka, b.shape, kb, now), s.lo, s.hi);
+  finish_collision(s, info, measure_overlap(-g.gap, g.contact_distance, rounding_scale(a.shape, ka, b.shape, kb, now), s.lo, s.hi));
+}
+
+template <class T>
+inline auto World<T>::Impl::collision_info(const Scheduled<T>& s, const Kinematics<T>& ka, const Kinematics<T>& kb) const
+    -> CollisionInfo<T> {
+  CollisionInfo<T> info;
+  info.time = now;
+  info.a = s.lo;
+  info.b = s.hi;
+  info.contact = s.contact;
+  info.feature_a = s.contact == ContactKind::EdgeVertex ? public_edge(bodies[s.lo].shape, s.feature_a) : s.feature_a;
+  info.feature_b = s.contact == ContactKind::VertexEdge ? public_edge(bodies[s.hi].shape, s.feature_b) : s.feature_b;
+  info.corner = s.corner;
+  info.at_start_overlap = s.at_start_overlap;
+  info.va_before = ka.v;
+  info.vb_before = kb.v;
+  return info;
+}
+
+template <class T>
+inline auto World<T>::Impl::finish_collision(const Scheduled<T>& s, const CollisionInfo<T>& info, const Overlap& o) -> void {
+  Body& a = bodies[s.lo];
+  Body& b = bodies[s.hi];
   if (o.ulps > worst_contact.ulps) worst_contact = o;
   ++a.version;
   ++b.version;

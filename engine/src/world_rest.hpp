@@ -156,7 +156,7 @@ inline auto World<T>::Impl::update_rest(BodyIndex mi, BodyIndex partner, const V
     if (keep) m.support[static_cast<std::size_t>(kept++)] = s;
   }
   m.supports = static_cast<std::uint8_t>(kept);
-  if (bodies[partner].fixed && !m.rests_on(partner) && m.supports < 2) {
+  if (bodies[partner].fixed && !bodies[partner].rotates && !m.rests_on(partner) && m.supports < 2) {
     using std::sqrt;
     const T len = sqrt(dot(normal_to_m, normal_to_m));
     if (len > T(0)) {
@@ -177,7 +177,7 @@ inline auto World<T>::Impl::update_rest(BodyIndex mi, BodyIndex partner, const V
 }
 
 template <class T> inline auto World<T>::Impl::continues_support(const Body& m, const Body& j) const -> bool {
-  if (m.supports == 0 || !j.fixed || !j.shape.is_outline()) return false;
+  if (m.supports == 0 || !j.fixed || j.rotates || !j.shape.is_outline()) return false;
   const BodyShape<T>& shape = j.shape;
   for (int k = 0; k < m.supports; ++k) {
     const Support& f = m.support[static_cast<std::size_t>(k)];

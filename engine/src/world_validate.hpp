@@ -29,7 +29,8 @@ template <class T> inline auto World<T>::Impl::watch_path(BodyIndex i) -> void {
   if (!tunnel_watch) return;
   const Body& b = bodies[i];
   if (b.fixed || b.shape.kind == ShapeKind::Segment) return;
-  const Vec2d offset = b.shape.kind == ShapeKind::Polygon ? vertex_centroid(b.shape.local) : Vec2d{};
+  // An interior point: a rotating polygon's path is its centroid's already.
+  const Vec2d offset = b.shape.kind == ShapeKind::Polygon && !b.rotates ? vertex_centroid(b.shape.local) : Vec2d{};
   if (!tunnel_watch->leave(i, offset, b.t0, b.p0, b.v0, b.acc, now)) return;
   if (!kValidating || !promises_every_collision(solver)) return;
   const Tunnel& t = tunnel_watch->tunnels().back();

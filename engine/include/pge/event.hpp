@@ -52,6 +52,9 @@ template <class T> struct CollisionInfo {
   T impulse{};                // magnitude along `normal` (0 when not approaching)
   T gap{};                    // signed separation at the contact (negative: overlap)
   Vec2<T> va_before, vb_before, va_after, vb_after;
+  // Angular velocities (rad/s, counter-clockwise) before and after: 0 for a body that does not
+  // rotate; a fixed body's constant spin (docs/rotation.md).
+  T wa_before{}, wb_before{}, wa_after{}, wb_after{};
   bool at_start_overlap = false;  // collided by the overlap rule
   // VertexEdge / EdgeVertex only: the vertex met the edge at one of its ends, a vertex against a
   // vertex (corner on corner, or parallel edges meeting end to end). `normal` is then the

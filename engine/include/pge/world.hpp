@@ -91,16 +91,26 @@ struct EventCounts {
 // field acceleration without the components the faces hold (zero in a V of two faces), and
 // `supports` names the fixed bodies it rests on (kNoBody when unused): the body and a support
 // touch all along the path, which is no contact event.
+// A rotating body (World::rotates) turns as well: its angle is theta0 + omega (t - t0) (t0 = 0 for
+// a fixed body, which spins about its position), p0, v0, acc are its pivot's path (a moving
+// polygon's centroid, a moving segment's midpoint), and its vertex k is at
+// p(t) + R(angle) World::pivot_vertices(i)[k]. Both are 0 for a body that does not rotate.
 template <class T> struct BodyMotion {
   T t0{};
   Vec2<T> p0, v0, acc;
   std::array<BodyIndex, 2> supports{kNoBody, kNoBody};
+  T theta0{}, omega{};
 };
 
-// A body's state at the world's current time.
+// A body's state at the world's current time: the position of its reference point (the scene's
+// `position`, which turns with a rotating body), the velocity of its centre of mass (a rotating
+// body's pivot; the reference point's for a body that does not rotate), its angle (rad) and
+// angular velocity (rad/s), 0 and 0 for a body that does not rotate.
 template <class T> struct BodySnapshot {
   Vec2<T> position;
   Vec2<T> velocity;
+  T angle{};
+  T angular_velocity{};
 };
 
 // One run of one scene. Movable, not copyable. A world is used from one thread; the callbacks
@@ -173,6 +183,13 @@ template <class T> class World {
   // For fixed bodies, the world coordinates the engine predicts with (position + local vertex,
   // rounded once at construction); empty for moving bodies.
   const std::vector<Vec2<T>>& world_vertices(BodyIndex i) const;
+  // Rotation (docs/rotation.md). Whether the body turns; its vertices about its pivot in its own
+  // frame (empty if it does not rotate); its pivot relative to the scene's position at angle 0;
+  // its moment of inertia about the pivot (kg m^2; 0 for fixed and non-rotating bodies).
+  bool rotates(BodyIndex i) const;
+  const std::vector<Vec2<T>>& pivot_vertices(BodyIndex i) const;
+  Vec2<T> pivot(BodyIndex i) const;
+  T inertia(BodyIndex i) const;
   SolverKind solver() const;
   BroadPhase broad_phase() const;  // AllPairs or Grid: what Auto chose
   // Bytes the world holds for its bodies, queues and grid (capacities; shapes' vertex lists
@@ -183,8 +200,9 @@ template <class T> class World {
   void set_velocity(BodyIndex i, Vec2<T> velocity);
 
   // Kinetic energy, potential energy of each body's constant acceleration field, and total
-  // momentum of the moving bodies, at time(): joules (sum m |v|^2 / 2; sum -m a . p, so m g y
-  // under gravity (0, -g)) and kg m / s, in T's arithmetic.
+  // momentum of the moving bodies, at time(): joules (sum m |v|^2 / 2, plus I w^2 / 2 for a
+  // rotating body; sum -m a . p with p the centre of mass, so m g y under gravity (0, -g)) and
+  // kg m / s, in T's arithmetic.
   T kinetic_energy() const;
   T potential_energy() const;
   Vec2<T> momentum() const;
@@ -203,8 +221,9 @@ template <class T> class World {
   // The largest overlap seen at any collision so far (measured at the contact time).
   Overlap largest_contact_overlap() const;
 
-  // A hash over the exact bits of time() and every body's position and velocity at time(): two
-  // runs of one scene and build give the same hash (what the golden-hash tests compare).
+  // A hash over the exact bits of time() and every body's position and velocity at time() (the
+  // path's point: a rotating body's pivot, then its angle and angular velocity): two runs of one
+  // scene and build give the same hash (what the golden-hash tests compare).
   std::uint64_t state_hash() const;
 
  private:

@@ -111,7 +111,7 @@ template <class B> class RotatingPairPredictor {
       for (std::size_t k = 0; k < nq; ++k) {
         const FeatureFunctions<B> f =
             point_edge_functions(P, sp.vertices[i], B(0), Q, sq.vertices[k], sq.vertices[(k + 1) % nq]);
-        search_edge(f, P, sp.vertices[i], B(0), Q, sq, from, {RotatingFeature::VertexEdge, point_on_a, i, k});
+        search_edge(f, P, sp, sp.vertices[i], B(0), Q, sq, from, {RotatingFeature::VertexEdge, point_on_a, i, k});
       }
   }
 
@@ -121,13 +121,11 @@ template <class B> class RotatingPairPredictor {
     for (std::size_t k = 0; k < nq; ++k) {
       const FeatureFunctions<B> f =
           point_edge_functions(P, Vec2<B>{}, sp.radius, Q, sq.vertices[k], sq.vertices[(k + 1) % nq]);
-      search_edge(f, P, Vec2<B>{}, sp.radius, Q, sq, from, {RotatingFeature::CircleEdge, point_on_a, 0, k});
+      search_edge(f, P, sp, Vec2<B>{}, sp.radius, Q, sq, from, {RotatingFeature::CircleEdge, point_on_a, 0, k});
     }
     for (std::size_t k = 0; k < nq; ++k) {
       const WaveSum<B> f = circle_vertex_function(P, sp.radius, Q, sq.vertices[k]);
-      const WaveRoot<B> r = earliest_wave_root(f, from, best_.t, rule_now_, opt_.max_boxes);
-      best_.boxes += r.boxes;
-      take(r, {RotatingFeature::CircleVertex, point_on_a, 0, k});
+      search(f, nullptr, P, sp, Vec2<B>{}, sp.radius, Q, sq, from, {RotatingFeature::CircleVertex, point_on_a, 0, k});
     }
   }
 
@@ -137,29 +135,91 @@ template <class B> class RotatingPairPredictor {
     std::size_t point, edge;
   };
 
-  // A point feature against an edge: roots of the gap where `along` may be in [0, e.e]; others
-  // are searched past. A start in overlap (the rule's root at lo) counts only where the point
-  // may be inside Q's outline (every edge's gap possibly <= 0; for a circle, the outline pushed
-  // out by its radius, a superset of overlap at the corners), not merely behind this edge's line.
-  void search_edge(const FeatureFunctions<B>& f, const PathAt<B>& P, const Vec2<B>& r, const B& rho,
-                   const PathAt<B>& Q, const RotatingShape<B>& sq, B lo, const Which& which) {
+  // A point feature against an edge (`f`: roots of the gap where `along` may be in [0, e.e];
+  // others are searched past), or a circle against a vertex (`gap` alone, f null). A start in
+  // overlap (the rule's root at lo) counts only where the point may be inside Q's outline (every
+  // edge's gap possibly <= 0; for a circle, the outline pushed out by its radius, a superset of
+  // overlap at the corners), not merely behind this edge's line.
+  //
+  // A tangency touching the search's start (the gap within rounding of zero at lo, where a graze
+  // was just processed) is that graze again, already at lo: searched past (past_tangency), or
+  // taken as a crossing if the gap goes certainly negative on the way.
+  //
+  // A segment has two sides and no inside: a vertex crossing its line is a contact only from
+  // the side P's body is on (as the translating engine judges it, contact_polygon.hpp), told by
+  // the mean of P's vertices, a point inside P. Without it a corner that has just bounced off
+  // one side, still on the line and leaving, would strike the other side at once.
+  void search(const WaveSum<B>& gap, const FeatureFunctions<B>* f, const PathAt<B>& P, const RotatingShape<B>& sp,
+              const Vec2<B>& r, const B& rho, const PathAt<B>& Q, const RotatingShape<B>& sq, B lo, const Which& which) {
     StartRule rule = rule_now_;
+    const bool touching_at_start = gap(Interval<B>(lo)).contains_zero();
     while (lo < best_.t) {
-      const WaveRoot<B> root = earliest_wave_root(f.gap, lo, best_.t, rule, opt_.max_boxes);
+      WaveRoot<B> root = earliest_wave_root(gap, lo, best_.t, rule, opt_.max_boxes);
       best_.boxes += root.boxes;
       if (root.status != RootStatus::Root) {
         take(root, which);
         return;
       }
-      const Interval<B> along = f.along(Interval<B>(root.t));
-      const bool on_edge = along.hi() >= B(0) && along.lo() <= f.length_sq.hi();
-      if (on_edge && (!root.at_start_overlap || possibly_inside(P, r, rho, Q, sq, root.t))) {
+      if (root.tangent && touching_at_start) {
+        const std::optional<B> past = past_tangency(gap, root.t, best_.t);
+        if (past) {
+          rule = StartRule::CrossingsOnly;
+          lo = *past;
+          continue;
+        }
+        root.tangent = false;  // it went below zero: a crossing, at the rounding's place
+      }
+      bool on_edge = true;
+      if (f) {
+        const Interval<B> along = f->along(Interval<B>(root.t));
+        on_edge = along.hi() >= B(0) && along.lo() <= f->length_sq.hi();
+      }
+      if (on_edge && which.feature == RotatingFeature::VertexEdge && sq.vertices.size() == 2 &&
+          behind_segment(P, sp, Q, sq, which.edge, root.t))
+        on_edge = false;
+      if (on_edge && (!root.at_start_overlap ||
+                      (possibly_inside(P, r, rho, Q, sq, root.t) && (!f || possibly_shallowest(P, r, rho, Q, sq, which.edge, root.t))))) {
         take(root, which);
         return;
       }
       rule = StartRule::CrossingsOnly;
-      lo = past_crossing(f.gap, root.t, best_.t);
+      lo = past_crossing(gap, root.t, best_.t);
     }
+  }
+
+  void search_edge(const FeatureFunctions<B>& f, const PathAt<B>& P, const RotatingShape<B>& sp, const Vec2<B>& r,
+                   const B& rho, const PathAt<B>& Q, const RotatingShape<B>& sq, const B& lo, const Which& which) {
+    search(f.gap, &f, P, sp, r, rho, Q, sq, lo, which);
+  }
+
+  // Whether P's body lies certainly behind edge k of the segment Q at t (its vertices' mean).
+  static bool behind_segment(const PathAt<B>& P, const RotatingShape<B>& sp, const PathAt<B>& Q,
+                             const RotatingShape<B>& sq, std::size_t k, const B& t) {
+    Vec2<B> sum;
+    for (const Vec2<B>& v : sp.vertices) sum = sum + v;
+    const B count = B(static_cast<int>(sp.vertices.size()));
+    const Vec2<B> mean{sum.x / count, sum.y / count};
+    return point_edge_functions(P, mean, B(0), Q, sq.vertices[k], sq.vertices[(k + 1) % 2]).gap(Interval<B>(t)).negative();
+  }
+
+  // The overlap rule's edge is the one the point is least behind (the translating engine's
+  // least-penetration axis): a point an ulp behind one edge of a square, leaving it, is a whole
+  // side behind the opposite edge, which must not collide it.
+  bool possibly_shallowest(const PathAt<B>& P, const Vec2<B>& r, const B& rho, const PathAt<B>& Q,
+                           const RotatingShape<B>& sq, std::size_t edge, const B& t) const {
+    const std::size_t nq = sq.vertices.size();
+    // Distances, not the functions' |e| multiples: compared crosswise, gap_k |e_edge| > gap_edge |e_k|.
+    const auto gap = [&](std::size_t k) {
+      const FeatureFunctions<B> f = point_edge_functions(P, r, rho, Q, sq.vertices[k], sq.vertices[(k + 1) % nq]);
+      return std::pair{f.gap(Interval<B>(t)), f.length_sq.sqrt()};
+    };
+    const auto [mine, mine_length] = gap(edge);
+    for (std::size_t k = 0; k < nq; ++k) {
+      if (k == edge) continue;
+      const auto [other, length] = gap(k);
+      if ((other * mine_length).lo() > (mine * length).hi()) return false;
+    }
+    return true;
   }
 
   bool possibly_inside(const PathAt<B>& P, const Vec2<B>& r, const B& rho, const PathAt<B>& Q,

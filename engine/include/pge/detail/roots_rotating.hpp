@@ -351,4 +351,20 @@ template <class B> B past_crossing(const WaveSum<B>& f, const B& t, const B& hi)
   return hi;
 }
 
+// Where a search may start after a tangency at t that it must not report again (a graze already
+// processed): the first of t plus 1, 2, 4, ... ulps at which f is certainly positive or certainly
+// rising (hi if none before it); nothing if f is certainly negative there first (the "tangency"
+// was a crossing within rounding, which the caller takes).
+template <class B> std::optional<B> past_tangency(const WaveSum<B>& f, const B& t, const B& hi) {
+  const WaveSum<B> d = f.derivative();
+  B step = interval_next_up(t) - t;
+  for (B x = interval_next_up(t); x < hi; x = t + step) {
+    const Interval<B> v = f(Interval<B>(x));
+    if (v.negative()) return std::nullopt;
+    if (v.positive() || d(Interval<B>(x)).positive()) return x;
+    step = step * B(2);
+  }
+  return hi;
+}
+
 }  // namespace pge::detail

@@ -1,0 +1,227 @@
+// World<T>::Impl, part of world_impl.hpp. Rotation (docs/rotation.md): the bodies that turn,
+// their pairs' contacts predicted by the rotating predictor (detail/predict_rotating.hpp) and
+// answered with the impulse with lever arms (detail/rigid.hpp).
+//
+// Boundaries. Every pair of which one body turns goes through this file: prediction
+// (predict_rotating), the impulse test at the horizon (rotating_approaching) and the collision
+// (collide_rotating). The translate-only subsystems never see such a pair: the exact refinement
+// skips its contacts (they are scheduled refined, the predictor's time standing), a rotating
+// body never rests on a face and no body rests on a rotating one, and the overlap measures read
+// the turned vertices (separation_at). A scene without a rotating body runs none of this.
+#pragma once
+
+#include "world_impl.hpp"
+
+namespace pge {
+
+template <class T> inline auto World<T>::Impl::setup_spin(std::size_t i, Body& b, const BodyDesc& d) -> void {
+  using std::sqrt;
+  Spin& r = spins[i];
+  b.rotates = true;
+  r.theta0 = T(d.angle);
+  r.omega = T(d.angular_velocity);
+  const std::vector<Vec2<T>>& local = b.shape.local;
+  if (!d.fixed) {
+    T per_mass{};
+    if (d.shape == ShapeKind::Polygon) {
+      const detail::MassProperties<T> mp = detail::polygon_mass_properties(local);
+      r.pivot = mp.centroid;
+      per_mass = mp.inertia_per_mass;
+    } else {
+      r.pivot = (local[0] + local[1]) * T(0.5);
+      per_mass = detail::rod_inertia_per_mass(local[0], local[1]);
+    }
+    r.inertia = d.inertia > 0 ? T(d.inertia) : T(d.mass) * per_mass;
+    r.inv_inertia = T(1) / r.inertia;
+  }
+  T reach{};
+  for (const Vec2<T>& v : local) {
+    r.vertices.push_back(v - r.pivot);
+    reach = std::max(reach, T(sqrt(dot(r.vertices.back(), r.vertices.back()))));
+  }
+  b.shape.reach = reach;
+  // The path is the pivot's: the scene's position is the reference point at the scene's angle.
+  b.p0 = b.p0 + detail::rotated(r.theta0, r.pivot);
+}
+
+template <class T> inline auto World<T>::Impl::rotating_shape(const Body& b) const -> detail::RotatingShape<T> {
+  detail::RotatingShape<T> s;
+  if (!b.fixed) {
+    s.path.t0 = b.t0;
+    s.path.v0 = b.v0;
+    s.path.a = b.acc;
+  }
+  s.path.p0 = b.p0;
+  if (b.rotates) {
+    const Spin& r = spin_of(b);
+    s.path.theta0 = r.theta0;
+    s.path.omega = r.omega;
+    s.vertices = r.vertices;
+  } else if (b.shape.is_outline()) {
+    s.vertices = b.shape.local;  // a fixed outline's too: about its position, as the scene gives it
+  }
+  if (b.shape.kind == ShapeKind::Circle) s.radius = b.shape.radius;
+  // The reach was rounded (a square root): widened by a few ulps so that it bounds every point.
+  s.reach = b.shape.reach * (T(1) + T(8) * std::numeric_limits<T>::epsilon());
+  return s;
+}
+
+template <class T>
+inline auto World<T>::Impl::predict_rotating(BodyIndex lo, BodyIndex hi) -> std::optional<PredictedContact<T>> {
+  const detail::RotatingShape<T> sa = rotating_shape(bodies[lo]), sb = rotating_shape(bodies[hi]);
+  const detail::RotatingContact<T> c =
+      detail::predict_rotating_pair(sa, sb, now, horizon, StartRule::OverlapCollides, detail::RotatingOptions{});
+  if (c.status == RootStatus::None) return std::nullopt;
+  PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
+  out.rotating = true;
+  if (c.status == RootStatus::Undecided) {
+    // Progress every time: a search that stopped where it started resumes an ulp later.
+    out.resume = true;
+    if (!(out.time > now)) out.time = detail::interval_next_up(now);
+    if (out.time > horizon) return std::nullopt;
+    return out;
+  }
+  if (c.t > horizon) return std::nullopt;
+  const auto index = [](std::size_t k) { return static_cast<std::uint16_t>(k); };
+  switch (c.feature) {
+    case detail::RotatingFeature::VertexEdge:
+      out.contact = c.point_on_a ? ContactKind::VertexEdge : ContactKind::EdgeVertex;
+      out.feature_a = index(c.point_on_a ? c.point : c.edge);
+      out.feature_b = index(c.point_on_a ? c.edge : c.point);
+      break;
+    case detail::RotatingFeature::CircleEdge:
+    case detail::RotatingFeature::CircleVertex:
+      // The circle is the point side; its feature is 0, the other's the edge (or vertex) index.
+      out.contact = c.feature == detail::RotatingFeature::CircleEdge ? ContactKind::CircleEdge : ContactKind::CircleVertex;
+      out.feature_a = index(c.point_on_a ? 0 : c.edge);
+      out.feature_b = index(c.point_on_a ? c.edge : 0);
+      break;
+  }
+  return out;
+}
+
+template <class T>
+inline auto World<T>::Impl::rotating_record(const Scheduled<T>& s, const T& t) const -> detail::RotatingContact<T> {
+  detail::RotatingContact<T> c;
+  c.status = RootStatus::Root;
+  c.t = t;
+  switch (s.contact) {
+    case ContactKind::VertexEdge:
+    case ContactKind::EdgeVertex:
+      c.feature = detail::RotatingFeature::VertexEdge;
+      c.point_on_a = s.contact == ContactKind::VertexEdge;
+      c.point = c.point_on_a ? s.feature_a : s.feature_b;
+      c.edge = c.point_on_a ? s.feature_b : s.feature_a;
+      break;
+    default:
+      c.feature = s.contact == ContactKind::CircleEdge ? detail::RotatingFeature::CircleEdge
+                                                        : detail::RotatingFeature::CircleVertex;
+      c.point_on_a = bodies[s.lo].shape.kind == ShapeKind::Circle;
+      c.edge = c.point_on_a ? s.feature_b : s.feature_a;
+      break;
+  }
+  return c;
+}
+
+template <class T>
+inline auto World<T>::Impl::rotating_geometry(const Scheduled<T>& s, const T& t) const -> detail::RotatingGeometry<T> {
+  return detail::rotating_contact_geometry(rotating_shape(bodies[s.lo]), rotating_shape(bodies[s.hi]), rotating_record(s, t));
+}
+
+template <class T> inline auto World<T>::Impl::rotating_approaching(const Scheduled<T>& s) const -> bool {
+  const Body& a = bodies[s.lo];
+  const Body& b = bodies[s.hi];
+  const Kinematics<T> ka = kinematics(a, s.time), kb = kinematics(b, s.time);
+  const detail::RotatingGeometry<T> g = rotating_geometry(s, s.time);
+  const T wa = a.rotates ? spin_of(a).omega : T(0), wb = b.rotates ? spin_of(b).omega : T(0);
+  const Vec2<T> ua = ka.v + perp(g.point - ka.p) * wa, ub = kb.v + perp(g.point - kb.p) * wb;
+  return dot(ub - ua, g.normal) < T(0) && dot(g.normal, g.normal) > T(0);
+}
+
+template <class T> inline auto World<T>::Impl::collide_rotating(const Scheduled<T>& s) -> void {
+  using std::sqrt;
+  Body& a = bodies[s.lo];
+  Body& b = bodies[s.hi];
+  rebase(a, now);
+  rebase(b, now);
+  const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
+  const detail::RotatingGeometry<T> g = rotating_geometry(s, now);
+
+  CollisionInfo<T> info = collision_info(s, ka, kb);
+  info.point = g.point;
+  const auto spin = [&](const Body& x) { return x.rotates ? spin_of(x).omega : T(0); };
+  const auto inv_inertia = [&](const Body& x) { return x.rotates ? spin_of(x).inv_inertia : T(0); };
+  info.wa_before = spin(a);
+  info.wb_before = spin(b);
+
+  // An axis-aligned normal is the exact unit vector along its axis, as in collide(): a box
+  // landing flat then bounces with v.y' = e u exactly.
+  Vec2<T> n = g.normal;
+  if (n.y == T(0) && n.x != T(0)) n = Vec2<T>{n.x > T(0) ? T(1) : T(-1), T(0)};
+  if (n.x == T(0) && n.y != T(0)) n = Vec2<T>{T(0), n.y > T(0) ? T(1) : T(-1)};
+  const T n_len = sqrt(dot(n, n));
+  // A fixed body's spin moves its surface (a turnstile), and nothing moves it: 1/m = 1/I = 0.
+  detail::RigidState<T> ra{ka.v, spin(a), a.inv_mass, inv_inertia(a)};
+  detail::RigidState<T> rb{kb.v, spin(b), b.inv_mass, inv_inertia(b)};
+  const T e = std::min(a.restitution, b.restitution);
+  const detail::Impulse<T> j = detail::apply_rigid_impulse(ra, ka.p, rb, kb.p, g.point, n, e);
+  info.normal = n_len > T(0) ? n * (T(1) / n_len) : n;
+  info.approach_speed = n_len > T(0) ? -j.v_n / n_len : T(0);
+  if (j.applied) {
+    if (!a.fixed) {
+      a.v0 = ra.v;
+      if (a.rotates) spin_of(a).omega = ra.w;
+    }
+    if (!b.fixed) {
+      b.v0 = rb.v;
+      if (b.rotates) spin_of(b).omega = rb.w;
+    }
+    info.impulse = j.j * n_len;
+    ++counts.collisions;
+    if (s.at_start_overlap) ++counts.overlap_starts;
+  } else {
+    ++counts.grazes;
+  }
+  // A translating body in the pair may rest on fixed faces: those it now leaves stop holding it
+  // (it never comes to rest on a rotating body: update_rest asks only non-rotating faces).
+  if (!a.fixed && !a.rotates) update_rest(s.lo, s.hi, -g.normal, g.point);
+  if (!b.fixed && !b.rotates) update_rest(s.hi, s.lo, g.normal, g.point);
+  info.va_after = a.v0;
+  info.vb_after = b.v0;
+  info.wa_after = spin(a);
+  info.wb_after = spin(b);
+  const Separation<T> sep = separation_at(a, b, now);
+  info.gap = sep.gap;
+  finish_collision(s, info, measure_overlap(-sep.gap, sep.contact_distance, rotating_rounding_scale(a, b, now), s.lo, s.hi));
+}
+
+template <class T> inline auto World<T>::Impl::world_vertex(const Body& b, std::size_t k, const T& t) const -> Vec2<T> {
+  const Vec2<T> p = kinematics(b, t).p;
+  if (b.rotates) return p + detail::rotated(angle_at(b, t), spin_of(b).vertices[k]);
+  return b.shape.vertex(p, k);
+}
+
+template <class T> inline auto World<T>::Impl::separation_at(const Body& a, const Body& b, const T& t) const -> Separation<T> {
+  if (!a.rotates && !b.rotates) return pge::separation(a.shape, kinematics(a, t).p, b.shape, kinematics(b, t).p);
+  const auto vertices_of = [&](const Body& x) { return [&x, &t, this](std::size_t k) { return world_vertex(x, k, t); }; };
+  if (a.shape.is_outline() && b.shape.is_outline())
+    return {outline_separation<T>(vertices_of(a), a.shape.vertex_count(), vertices_of(b), b.shape.vertex_count()),
+            std::min(a.shape.size, b.shape.size)};
+  const Body& circle = a.shape.is_outline() ? b : a;
+  const Body& other = a.shape.is_outline() ? a : b;
+  return {point_outline_distance(kinematics(circle, t).p, vertices_of(other), other.shape.vertex_count()) - circle.shape.radius,
+          circle.shape.radius};
+}
+
+template <class T> inline auto World<T>::Impl::rotating_rounding_scale(const Body& a, const Body& b, const T& t) const -> T {
+  using std::abs;
+  using std::sqrt;
+  const Kinematics<T> ka = kinematics(a, t), kb = kinematics(b, t);
+  const auto scale = [](const Body& x, const Vec2<T>& p) {
+    return x.rotates ? max_abs(p) + x.shape.reach : x.shape.coordinate_scale(p);
+  };
+  const Vec2<T> dv = kb.v - ka.v;
+  return std::max(scale(a, ka.p), scale(b, kb.p)) + sqrt(dot(dv, dv)) * abs(t);
+}
+
+}  // namespace pge
