@@ -127,6 +127,13 @@ void BM_Pegs(benchmark::State& state) {
 void BM_Polygons(benchmark::State& state) {
   run(state, pge::make_polygons(params(static_cast<std::uint32_t>(state.range(0)))), BroadPhase::Auto);
 }
+// The same polygons turning at up to 10 rad/s (docs/rotation.md): every pair with a turning body
+// is predicted by the rotating search, with rigorous sin/cos enclosures.
+void BM_SpinningPolygons(benchmark::State& state) {
+  GasParams p = params(static_cast<std::uint32_t>(state.range(0)));
+  p.spin = 10;
+  run(state, pge::make_polygons(p), BroadPhase::Auto);
+}
 
 // The ratio (ns per event at 1e5 over 1e3) as one figure: run one after the other,
 // gas/1000 and gas/100000 meet the machine's noise at different moments, and on a shared
@@ -167,6 +174,7 @@ BENCHMARK(BM_Gas)->Name("gas")->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchma
 BENCHMARK(BM_GasQuartic)->Name("gas_quartic")->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pegs)->Name("pegs")->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Polygons)->Name("polygons")->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SpinningPolygons)->Name("spinning_polygons")->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 // Where the grid starts to pay (kGridMinMovingBodies): the small gas both ways.
 BENCHMARK(BM_GasAllPairs)->Name("gas_all_pairs")->Arg(16)->Arg(32)->Arg(64)->Arg(128)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GasGrid)->Name("gas_grid")->Arg(16)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);

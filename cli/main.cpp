@@ -188,6 +188,10 @@ int main(int argc, char** argv) {
   gen_cmd->add_option("--until", gen.gas.until, "The scene's run.until")->check(kPositive);
   gen_cmd->add_option("--max-events", gen.gas.max_events, "The scene's run.max_events")->transform(kEventCount);
   gen_cmd->add_option("--seed", gen.gas.seed, "Seed of the generator");
+  gen_cmd->add_option("--spin", gen.gas.spin,
+                      "polygons: every moving polygon turns, its angular velocity uniform in [-spin, spin] rad/s "
+                      "(a pge-scene/2 file; 0: none)")
+      ->check(CLI::Range(0.0, 1e4));
   gen_cmd->add_option("-o,--out", gen.out, "Output file (default: stdout)");
 
   ReportOptions report;

@@ -1,5 +1,6 @@
 #include "trace.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -29,6 +30,7 @@ bool TraceWriter::close() {
 }
 
 void TraceWriter::header(const Scene& scene, std::string_view scalar, std::string_view solver, double horizon) {
+  rotating_ = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const BodyDesc& b) { return b.rotates; });
   fmt::print(file_, "{{\"format\":\"pge-trace/2\",\"mode\":\"events\",\"scene\":{},\"scalar\":\"{}\",\"solver\":\"{}\",\"until\":{},"
              "\"bodies\":[",
              quoted(scene.name), scalar, solver, horizon);

@@ -250,7 +250,9 @@ template <class T> inline auto World<T>::Impl::schedule_all() -> void {
   std::vector<Scheduled<T>> best(bodies.size());
   for (BodyIndex i = 0; i < bodies.size(); ++i) {
     for (BodyIndex j = i + 1; j < bodies.size(); ++j) {
-      auto c = predict(i, j);
+      // Offered to both bodies: of use up to the later of their best events so far.
+      const auto until = [&](BodyIndex k) { return best[k].valid() && !bodies[k].fixed ? best[k].time : horizon; };
+      auto c = predict(i, j, std::max(until(i), until(j)));
       if (!c) continue;
       Scheduled<T> s = scheduled(*c, i, j, j);
       if (!bodies[i].fixed && s.key_less(best[i])) best[i] = s;

@@ -209,7 +209,9 @@ template <class T> struct World<T>::Impl {
   // The earliest contact of a pair with a rotating body, from now to the horizon
   // (detail::predict_rotating_pair; every solver uses it for now: docs/rotation.md). A search
   // that ran out of its box budget is a `resume` entry at the time up to which nothing touches.
-  std::optional<PredictedContact<T>> predict_rotating(BodyIndex lo, BodyIndex hi);
+  // The search covers [now, min(limit, horizon)]: a contact later than the owner's best event
+  // is not the owner's next event, and a rotating search costs in proportion to its window.
+  std::optional<PredictedContact<T>> predict_rotating(BodyIndex lo, BodyIndex hi, const T& limit);
   // A scheduled contact of a rotating pair as the predictor's contact record, at time t.
   detail::RotatingContact<T> rotating_record(const Scheduled<T>& s, const T& t) const;
   // The contact's point and normal (from lo towards hi) at time t.
@@ -228,7 +230,9 @@ template <class T> struct World<T>::Impl {
 
   // ---- Narrow phase (world_predict.hpp): a pair's earliest contact.
   // The earliest contact of the pair (lo < hi) from `now` to the horizon.
-  std::optional<PredictedContact<T>> predict(BodyIndex lo, BodyIndex hi);
+  // `limit`: a contact after it is of no use to the caller (the owner's best event so far); the
+  // rotating search stops there (the translate-only predictions, closed forms, ignore it).
+  std::optional<PredictedContact<T>> predict(BodyIndex lo, BodyIndex hi, const T& limit);
 
   // A float near-graze of two circles predicted again from their contact polynomial built in
   // double from the same stored paths: the stored floats are exact in double, so its rounding
@@ -518,7 +522,9 @@ template <class T> struct World<T>::Impl {
 
   // A resting body's contact interval along the face: a circle touches at its centre's
   // projection; a polygon along its vertices lowest towards the face.
-  static void contact_span(const Body& m, Support& s);
+  // A rotating body rests only while it does not turn (omega exactly 0, landed face on face):
+  // its points about its pivot at its fixed angle stand for the translating body's local ones.
+  void contact_span(const Body& m, Support& s) const;
 
   // Adjacent times tried past a leave's rounded root before it is taken as it is.
   static constexpr int kLeaveSteps = 64;

@@ -8,7 +8,7 @@
 namespace pge {
 
 template <class T>
-inline auto World<T>::Impl::predict(BodyIndex lo, BodyIndex hi) -> std::optional<PredictedContact<T>> {
+inline auto World<T>::Impl::predict(BodyIndex lo, BodyIndex hi, const T& limit) -> std::optional<PredictedContact<T>> {
   const Body& a = bodies[lo];
   const Body& b = bodies[hi];
   if (a.fixed && b.fixed) return std::nullopt;
@@ -16,7 +16,7 @@ inline auto World<T>::Impl::predict(BodyIndex lo, BodyIndex hi) -> std::optional
   if (a.rests_on(hi) || b.rests_on(lo)) return std::nullopt;  // touching all along: no event
   if (continues_support(a, b) || continues_support(b, a)) return std::nullopt;  // a joint: no event
   ++counts.predictions;
-  if (a.rotates || b.rotates) return predict_rotating(lo, hi);
+  if (a.rotates || b.rotates) return predict_rotating(lo, hi, limit);
   const Kinematics<T> ka = kinematics(a, now), kb = kinematics(b, now);
   std::optional<PredictedContact<T>> c;
   if (solver != SolverKind::Fast && a.shape.kind == ShapeKind::Circle && b.shape.kind == ShapeKind::Circle) {
@@ -135,7 +135,7 @@ inline auto World<T>::Impl::exact_first_contact(detail::exact::IntPoly poly) con
 
 template <class T> inline auto World<T>::Impl::offer(BodyIndex i, BodyIndex j, Scheduled<T>& best) -> void {
   const BodyIndex lo = std::min(i, j), hi = std::max(i, j);
-  auto c = predict(lo, hi);
+  auto c = predict(lo, hi, best.valid() ? best.time : horizon);
   if (!c) return;
   const Scheduled<T> s = scheduled(*c, lo, hi, j);
   if (s.key_less(best)) best = s;

@@ -43,13 +43,19 @@ inline auto World<T>::Impl::face_of(BodyIndex f, const Vec2<T>& n, const Vec2<T>
   return best;
 }
 
-template <class T> inline auto World<T>::Impl::contact_span(const Body& m, Support& s) -> void {
+template <class T> inline auto World<T>::Impl::contact_span(const Body& m, Support& s) const -> void {
   if (!m.shape.is_outline()) return;
+  std::vector<Vec2<T>> turned;
+  if (m.rotates) {
+    const T angle = angle_at(m, now);
+    for (const Vec2<T>& v : spin_of(m).vertices) turned.push_back(detail::rotated(angle, v));
+  }
+  const std::vector<Vec2<T>>& points = m.rotates ? turned : m.shape.local;
   T low = std::numeric_limits<T>::infinity();
-  for (const Vec2<T>& v : m.shape.local) low = std::min(low, dot(v, s.n));
+  for (const Vec2<T>& v : points) low = std::min(low, dot(v, s.n));
   const T tol = T(kRestVertexTolerance) * m.shape.size;
   bool first = true;
-  for (const Vec2<T>& v : m.shape.local) {
+  for (const Vec2<T>& v : points) {
     if (dot(v, s.n) > low + tol) continue;
     const T along = dot(v, s.u);
     s.s_lo = first ? along : std::min(s.s_lo, along);

@@ -67,13 +67,33 @@ template <class T> inline auto World<T>::Impl::rotating_shape(const Body& b) con
 }
 
 template <class T>
-inline auto World<T>::Impl::predict_rotating(BodyIndex lo, BodyIndex hi) -> std::optional<PredictedContact<T>> {
+inline auto World<T>::Impl::predict_rotating(BodyIndex lo, BodyIndex hi, const T& limit)
+    -> std::optional<PredictedContact<T>> {
+  using std::abs;
+  using std::sqrt;
   const detail::RotatingShape<T> sa = rotating_shape(bodies[lo]), sb = rotating_shape(bodies[hi]);
+  const T wanted = std::min(limit, horizon);
+  if (wanted < now) return std::nullopt;
+  // The window: at most the time in which the pair's points can close by kRotatingWindowReaches
+  // times their reaches' sum at their present speeds (the centres' relative speed plus each
+  // spin times its reach). A search costs in proportion to its window (a box per near miss or
+  // turn), and the first predictions of a run, with no best event to stop at, would otherwise
+  // search to the horizon; past the window the pair is predicted again (a resume entry).
+  const Kinematics<T> ka = kinematics(bodies[lo], now), kb = kinematics(bodies[hi], now);
+  const Vec2<T> dv = kb.v - ka.v;
+  const T speed = sqrt(dot(dv, dv)) + abs(sa.path.omega) * sa.reach + abs(sb.path.omega) * sb.reach;
+  const T span = T(kRotatingWindowReaches) * (sa.reach + sb.reach);
+  const T end = speed > T(0) && span / speed < wanted - now ? now + span / speed : wanted;
   const detail::RotatingContact<T> c =
-      detail::predict_rotating_pair(sa, sb, now, horizon, StartRule::OverlapCollides, detail::RotatingOptions{});
-  if (c.status == RootStatus::None) return std::nullopt;
+      detail::predict_rotating_pair(sa, sb, now, end, StartRule::OverlapCollides, detail::RotatingOptions{});
   PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
   out.rotating = true;
+  if (c.status == RootStatus::None) {
+    if (!(end < wanted)) return std::nullopt;
+    out.time = end;
+    out.resume = true;
+    return out;
+  }
   if (c.status == RootStatus::Undecided) {
     // Progress every time: a search that stopped where it started resumes an ulp later.
     out.resume = true;
@@ -134,7 +154,7 @@ template <class T> inline auto World<T>::Impl::rotating_approaching(const Schedu
   const Kinematics<T> ka = kinematics(a, s.time), kb = kinematics(b, s.time);
   const detail::RotatingGeometry<T> g = rotating_geometry(s, s.time);
   const T wa = a.rotates ? spin_of(a).omega : T(0), wb = b.rotates ? spin_of(b).omega : T(0);
-  const Vec2<T> ua = ka.v + perp(g.point - ka.p) * wa, ub = kb.v + perp(g.point - kb.p) * wb;
+  const Vec2<T> ua = ka.v + perp(g.arm_a) * wa, ub = kb.v + perp(g.arm_b) * wb;
   return dot(ub - ua, g.normal) < T(0) && dot(g.normal, g.normal) > T(0);
 }
 
@@ -164,7 +184,7 @@ template <class T> inline auto World<T>::Impl::collide_rotating(const Scheduled<
   detail::RigidState<T> ra{ka.v, spin(a), a.inv_mass, inv_inertia(a)};
   detail::RigidState<T> rb{kb.v, spin(b), b.inv_mass, inv_inertia(b)};
   const T e = std::min(a.restitution, b.restitution);
-  const detail::Impulse<T> j = detail::apply_rigid_impulse(ra, ka.p, rb, kb.p, g.point, n, e);
+  const detail::Impulse<T> j = detail::apply_rigid_impulse_with_arms(ra, g.arm_a, rb, g.arm_b, n, e);
   info.normal = n_len > T(0) ? n * (T(1) / n_len) : n;
   info.approach_speed = n_len > T(0) ? -j.v_n / n_len : T(0);
   if (j.applied) {
@@ -182,10 +202,22 @@ template <class T> inline auto World<T>::Impl::collide_rotating(const Scheduled<
   } else {
     ++counts.grazes;
   }
-  // A translating body in the pair may rest on fixed faces: those it now leaves stop holding it
-  // (it never comes to rest on a rotating body: update_rest asks only non-rotating faces).
-  if (!a.fixed && !a.rotates) update_rest(s.lo, s.hi, -g.normal, g.point);
-  if (!b.fixed && !b.rotates) update_rest(s.hi, s.lo, g.normal, g.point);
+  // Resting contact (world_rest.hpp): a body that does not turn, or a rotating one that landed
+  // face on face and does not turn (omega exactly 0: the impulse at the stretch's middle adds no
+  // spin to a body that had none), may rest on a fixed face; faces a body now leaves stop holding
+  // it; a body that turns rests on nothing (a corner holding a box up would take a torque that
+  // resting contact does not model), and nothing rests on a rotating body (update_rest asks only
+  // non-rotating faces).
+  for (const auto& [i, partner, to_i] : {std::tuple{s.lo, s.hi, -g.normal}, std::tuple{s.hi, s.lo, g.normal}}) {
+    Body& x = bodies[i];
+    if (x.fixed) continue;
+    if (!x.rotates || (spin_of(x).omega == T(0) && (g.face_on_face || x.supports > 0))) {
+      update_rest(i, partner, to_i, g.point);
+    } else if (x.supports > 0) {
+      x.supports = 0;
+      resolve_supports(x);
+    }
+  }
   info.va_after = a.v0;
   info.vb_after = b.v0;
   info.wa_after = spin(a);

@@ -203,7 +203,8 @@ class TraceReader {
   void collision(const Line& l, const Json& j) {
     // PGE's own collision lines carry more (the contact, the normal, ...): known, not needed.
     l.keys(j, {}, {"event", "t", "a", "b", "before", "va", "vb"},
-           {"contact", "features", "normal", "point", "approach_speed", "impulse", "gap", "overlap_rule"});
+           {"contact", "features", "normal", "point", "approach_speed", "impulse", "gap", "overlap_rule", "turn", "wa",
+            "wb"});
     TraceCollision c;
     c.line = l.number();
     c.t = time(l, j, false);
@@ -232,7 +233,7 @@ class TraceReader {
   // PGE's frame lines sample the state; the referee follows the collisions, so frames are only
   // read for their form and their times.
   void frame(const Line& l, const Json& j) {
-    l.keys(j, {}, {"event", "t", "bodies"}, {});
+    l.keys(j, {}, {"event", "t", "bodies"}, {"turns"});
     time(l, j, false);
     const Json& states = l.array(j["bodies"], key("bodies"));
     for (std::size_t i = 0; i < states.size(); ++i) l.state(states[i], key("bodies") + static_cast<int>(i));

@@ -157,6 +157,7 @@ Scene make_polygons(const GasParams& p) {
     }
   });
   std::uint32_t taken = 0;
+  SplitMix64 spin(p.seed ^ 0x5b1eull);
   for (const BodyDesc& m : movers.bodies) {
     if (taken == p.bodies) break;
     if (m.fixed) continue;
@@ -168,6 +169,10 @@ Scene make_polygons(const GasParams& p) {
     if (!clear) continue;
     BodyDesc b = m;
     b.id = "b" + std::to_string(taken++);
+    if (p.spin > 0) {
+      b.rotates = true;
+      b.angular_velocity = spin.uniform(-p.spin, p.spin);
+    }
     s.bodies.push_back(b);
   }
   return s;

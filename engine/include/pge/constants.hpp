@@ -187,4 +187,11 @@ inline constexpr std::size_t kGridMinMovingBodies = 16;
 inline constexpr double kMaxAngle = 1e6;
 inline constexpr double kMaxAngularVelocity = 1e4;
 
+// A rotating pair's search window (engine/src/world_rotation.hpp), in multiples of the pair's
+// reaches' sum closed at its present closing speed; past it the pair is predicted again. Larger:
+// longer searches (each costs about a box per turn or near miss in its window), fewer
+// re-predictions; smaller: the reverse. Nothing is missed either way: the next window starts
+// where this one ended.
+inline constexpr double kRotatingWindowReaches = 8;
+
 }  // namespace pge

@@ -30,6 +30,10 @@ struct GasParams {
   double until = 10;
   std::uint64_t max_events = 100000;
   std::uint64_t seed = 1;
+  // Polygons only: > 0 makes every moving polygon turn (pge-scene/2), its angular velocity
+  // uniform in [-spin, spin] rad/s from a generator of its own (the same seed gives the same
+  // positions and velocities with and without spin).
+  double spin = 0;
 };
 
 // Equal discs of unit mass in a square box of four fixed segments, on a jittered grid so that

@@ -27,8 +27,11 @@
 #include "pge/detail/contact_rotating.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
+#include <vector>
 #include <type_traits>
 
 namespace pge::detail {
@@ -57,6 +60,7 @@ template <class B> struct RotatingContact {
 struct RotatingOptions {
   std::uint64_t max_boxes = 100000;  // per feature search
   bool bounding_circles = true;      // start where the bounding circles can first touch
+  bool advance = true;               // then advance conservatively while the shapes are far apart
 };
 
 template <class B> class RotatingPairPredictor {
@@ -90,11 +94,12 @@ template <class B> class RotatingPairPredictor {
         from = meet.t;
       }
     }
+    if (opt_.advance) from = advance(from, hi);
+    if (!(from < hi)) return best_;
     // The start rule belongs to lo (now); from a later start the shapes cannot overlap there.
     rule_now_ = from == lo ? rule_ : StartRule::CrossingsOnly;
     if (!a_.circle() && !b_.circle()) {
-      outline_outline(pa, a_, pb, b_, true, from);
-      outline_outline(pb, b_, pa, a_, false, from);
+      outline_pair(pa, pb, from);
     } else if (a_.circle() != b_.circle()) {
       const bool a_round = a_.circle();
       circle_outline(a_round ? pa : pb, a_round ? a_ : b_, a_round ? pb : pa, a_round ? b_ : a_, a_round, from);
@@ -103,16 +108,120 @@ template <class B> class RotatingPairPredictor {
   }
 
  private:
-  // The vertices of P against the edges of Q.
-  void outline_outline(const PathAt<B>& P, const RotatingShape<B>& sp, const PathAt<B>& Q, const RotatingShape<B>& sq,
-                       bool point_on_a, const B& from) {
-    const std::size_t nq = sq.vertices.size();
-    for (std::size_t i = 0; i < sp.vertices.size(); ++i)
-      for (std::size_t k = 0; k < nq; ++k) {
-        const FeatureFunctions<B> f =
-            point_edge_functions(P, sp.vertices[i], B(0), Q, sq.vertices[k], sq.vertices[(k + 1) % nq]);
-        search_edge(f, P, sp, sp.vertices[i], B(0), Q, sq, from, {RotatingFeature::VertexEdge, point_on_a, i, k});
-      }
+  // Conservative advancement: from `from`, steps of the proven distance between the shapes over
+  // the fastest any of their points can close (the centres' relative speed over the window plus
+  // each body's |omega| times its reach), while that distance is more than a sixteenth of the
+  // reaches' sum; then the feature searches take over. Each step costs one enclosure of both
+  // shapes (one sin/cos each), where a feature search over a long window costs hundreds of boxes
+  // of several sin/cos each: most pairs of a gas are proven apart until the owner's next event in
+  // a few steps (the window's end, which the caller caps there). The distance is a lower bound:
+  // the largest separation of the two outlines along any edge normal of either (a projection),
+  // or a circle's centre's signed distance to an edge line less its radius. Returns the time up
+  // to which no contact is possible (hi if none in the window).
+  B advance(B t, const B& hi) {
+    using I = Interval<B>;
+    const PathAt<B> pa = path_at(a_.path, t), pb = path_at(b_.path, t);
+    const VecPoly<B> d = relative_centre(pa, pb);
+    const I window = I(hi) - I(t);
+    const auto norm = [](const Vec2<I>& v) { return (v.x.square() + v.y.square()).sqrt(); };
+    const I speed = norm(d.c[1]) + I(B(2)) * norm(d.c[2]) * window + I(pa.omega.magnitude()) * I(a_.reach) +
+                    I(pb.omega.magnitude()) * I(b_.reach);
+    const B vmax = speed.hi();
+    if (!(vmax > B(0)) || !(vmax < std::numeric_limits<B>::infinity())) return t;
+    vmax_ = vmax;
+    const B close = (a_.reach + b_.reach) / B(1024);
+    for (int step = 0; step < kAdvanceSteps; ++step) {
+      const B dist = distance_lower_bound(t);
+      if (!(dist > close)) return t;
+      const B next = (I(t) + I(dist) / vmax).lo();
+      if (!(next > t)) return t;
+      if (next >= hi) return hi;
+      t = next;
+    }
+    return t;
+  }
+  static constexpr int kAdvanceSteps = 64;
+
+  // A body's points at t (its path taken at t), as enclosures.
+  static std::vector<Vec2<Interval<B>>> points_at(const RotatingShape<B>& s, const PathAt<B>& p) {
+    const SinCos<B> sc = sin_cos(p.phase);
+    std::vector<Vec2<Interval<B>>> out;
+    out.reserve(s.vertices.size());
+    for (const Vec2<B>& v : s.vertices) {
+      const Vec2<Interval<B>> r = enclose(v);
+      out.push_back({p.c[0].x + sc.cos * r.x - sc.sin * r.y, p.c[0].y + sc.sin * r.x + sc.cos * r.y});
+    }
+    return out;
+  }
+
+  // The largest separation along the edge normals of `edges`' outline of the points `other`
+  // (minus `rho` for a circle's centre), as a lower bound on their distance.
+  static B separation(const std::vector<Vec2<Interval<B>>>& edges, const std::vector<Vec2<Interval<B>>>& other,
+                      const B& rho) {
+    using I = Interval<B>;
+    B best = -std::numeric_limits<B>::infinity();
+    const std::size_t n = edges.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec2<I> e = edges[(k + 1) % n] - edges[k];
+      const Vec2<I> out{e.y, -e.x};
+      B least = std::numeric_limits<B>::infinity();
+      for (const Vec2<I>& q : other) least = std::min(least, dot(out, q - edges[k]).lo());
+      const I length = (out.x.square() + out.y.square()).sqrt();
+      const B gap = least > B(0) ? (I(least) / length.hi()).lo() - rho : (least < B(0) ? least : B(0)) - rho;
+      best = std::max(best, gap);
+    }
+    return best;
+  }
+
+  B distance_lower_bound(const B& t) const {
+    const PathAt<B> pa = path_at(a_.path, t), pb = path_at(b_.path, t);
+    if (a_.circle() || b_.circle()) {
+      const bool a_round = a_.circle();
+      const PathAt<B>& pc = a_round ? pa : pb;
+      const std::vector<Vec2<Interval<B>>> centre{pc.c[0]};
+      return separation(points_at(a_round ? b_ : a_, a_round ? pb : pa), centre, a_round ? a_.radius : b_.radius);
+    }
+    const std::vector<Vec2<Interval<B>>> va = points_at(a_, pa), vb = points_at(b_, pb);
+    return std::max(separation(va, vb, B(0)), separation(vb, va, B(0)));
+  }
+
+  // Every vertex of either outline against every edge of the other, nearest first: each
+  // feature's distance in front of its edge's line at `from` (its gap over |e|, a lower bound) is
+  // also a bound on when it can first touch, at the fastest closing speed (advance): a feature
+  // that cannot touch before the best contact found so far is not searched at all, and the
+  // nearest ones, searched first, usually give that contact at once. (Ties between two features
+  // at the same time keep the first searched.)
+  void outline_pair(const PathAt<B>& pa, const PathAt<B>& pb, const B& from) {
+    struct Job {
+      B near;
+      FeatureFunctions<B> f;
+      bool point_on_a;
+      std::size_t i, k;
+    };
+    std::vector<Job> jobs;
+    const Interval<B> at(from);
+    for (const bool on_a : {true, false}) {
+      const RotatingShape<B>& sp = on_a ? a_ : b_;
+      const RotatingShape<B>& sq = on_a ? b_ : a_;
+      const PathAt<B>& P = on_a ? pa : pb;
+      const PathAt<B>& Q = on_a ? pb : pa;
+      const std::size_t nq = sq.vertices.size();
+      for (std::size_t i = 0; i < sp.vertices.size(); ++i)
+        for (std::size_t k = 0; k < nq; ++k) {
+          FeatureFunctions<B> f = point_edge_functions(P, sp.vertices[i], B(0), Q, sq.vertices[k], sq.vertices[(k + 1) % nq]);
+          const B gap = f.gap(at).lo();
+          const B near = gap > B(0) ? (Interval<B>(gap) / f.length_sq.sqrt().hi()).lo() : B(0);
+          jobs.push_back({near, std::move(f), on_a, i, k});
+        }
+    }
+    std::stable_sort(jobs.begin(), jobs.end(), [](const Job& x, const Job& y) { return x.near < y.near; });
+    for (const Job& j : jobs) {
+      if (vmax_ > B(0) && j.near > B(0) && (Interval<B>(from) + Interval<B>(j.near) / vmax_).lo() >= best_.t) break;
+      const RotatingShape<B>& sp = j.point_on_a ? a_ : b_;
+      const RotatingShape<B>& sq = j.point_on_a ? b_ : a_;
+      search_edge(j.f, j.point_on_a ? pa : pb, sp, sp.vertices[j.i], B(0), j.point_on_a ? pb : pa, sq, from,
+                  {RotatingFeature::VertexEdge, j.point_on_a, j.i, j.k});
+    }
   }
 
   void circle_outline(const PathAt<B>& P, const RotatingShape<B>& sp, const PathAt<B>& Q, const RotatingShape<B>& sq,
@@ -154,7 +263,8 @@ template <class B> class RotatingPairPredictor {
     StartRule rule = rule_now_;
     const bool touching_at_start = gap(Interval<B>(lo)).contains_zero();
     while (lo < best_.t) {
-      WaveRoot<B> root = earliest_wave_root(gap, lo, best_.t, rule, opt_.max_boxes);
+      WaveRoot<B> root = f ? earliest_wave_root_on(gap, f->along, f->length_sq, lo, best_.t, rule, opt_.max_boxes)
+                           : earliest_wave_root(gap, lo, best_.t, rule, opt_.max_boxes);
       best_.boxes += root.boxes;
       if (root.status != RootStatus::Root) {
         take(root, which);
@@ -297,6 +407,9 @@ template <class B> class RotatingPairPredictor {
   RotatingOptions opt_;
   RotatingContact<B> best_;
   B origin_{};
+  // The fastest any point of one shape closes on the other over the search's window (advance);
+  // 0 when not known (then nothing is pruned).
+  B vmax_{};
 };
 
 // Where and along which normal two shapes touch at a predicted contact (double geometry at the
@@ -304,15 +417,26 @@ template <class B> class RotatingPairPredictor {
 // whether it is a face on a face.
 //
 // Face on face. When the vertex's neighbour along its own outline cannot be told from touching
-// the same edge at that time either (its gap's enclosure holds zero) and lies on the edge, the
+// the same edge at that time either (its gap's enclosure is not certainly positive: the struck
+// vertex itself may be certainly an ulp past the line at its contact time, and a neighbour on
+// the same line with it) and lies on the edge, the
 // two faces meet along a stretch, not at a point: the point is then the middle of the stretch
 // (of the two vertices' positions along the edge, clamped to it), on the struck edge's line,
 // and the normal the edge's. The middle because a face that lands flat must bounce without
 // turning (a box dropped flat on a floor leaves as the translating engine would have it): one
 // impulse stands for pressure spread over the stretch, and its centre is the middle; either end
 // would set the box spinning.
+//
+// Lever arms. The contact point relative to each body's centre is taken from the bodies' own
+// frames, not from world coordinates: the point side's arm is its turned vertex (or, face on
+// face, the turned middle of its two vertices; a circle's, its radius against the normal), and
+// the other's is that plus the difference of the centres. Only the arm's part across the normal
+// moves the impulse's angular terms, so the arm need not end on the edge's line. World
+// coordinates would round the arm at the scale of the positions (1e-10 of an arm at 1e6 from
+// the origin), and the middle of a box landing flat an ulp off its centre, setting it spinning.
 template <class B> struct RotatingGeometry {
   Vec2<B> point, normal;
+  Vec2<B> arm_a, arm_b;  // point - centre of a, of b
   bool face_on_face = false;
 };
 
@@ -339,12 +463,15 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
   const B tp = angle_at(sp.path, c.t), tq = angle_at(sq.path, c.t);
   const std::size_t n = sq.vertices.size();
   RotatingGeometry<B> g;
-  // Outward from Q towards P.
-  Vec2<B> out;
+  // Outward from Q towards P; the arms from P's and Q's centres.
+  Vec2<B> out, arm_p, arm_q;
+  const Vec2<B> centres = cp - cq;
   if (c.feature == RotatingFeature::CircleVertex) {
-    const Vec2<B> v = cq + rotated(tq, sq.vertices[c.edge]);
+    arm_q = rotated(tq, sq.vertices[c.edge]);
+    const Vec2<B> v = cq + arm_q;
     g.point = v;
     out = cp - v;
+    arm_p = arm_q - centres;
   } else {
     const Vec2<B> qa = cq + rotated(tq, sq.vertices[c.edge]), qb = cq + rotated(tq, sq.vertices[(c.edge + 1) % n]);
     const Vec2<B> e = qb - qa;
@@ -352,9 +479,11 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
     if (c.feature == RotatingFeature::CircleEdge) {
       using std::sqrt;
       const B len = sqrt(dot(e, e));
-      g.point = cp - out * (sp.radius / len);
+      arm_p = out * (-sp.radius / len);
+      g.point = cp + arm_p;
     } else {
-      g.point = cp + rotated(tp, sp.vertices[c.point]);
+      arm_p = rotated(tp, sp.vertices[c.point]);
+      g.point = cp + arm_p;
       const std::size_t m = sp.vertices.size();
       const PathAt<B> P = path_at(sp.path, c.t), Q = path_at(sq.path, c.t);
       const Interval<B> at(c.t);
@@ -364,17 +493,24 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
         const FeatureFunctions<B> f =
             point_edge_functions(P, sp.vertices[j], B(0), Q, sq.vertices[c.edge], sq.vertices[(c.edge + 1) % n]);
         const Interval<B> along = f.along(at);
-        if (!f.gap(at).contains_zero() || along.hi() < B(0) || along.lo() > f.length_sq.hi()) continue;
+        if (f.gap(at).positive() || along.hi() < B(0) || along.lo() > f.length_sq.hi()) continue;
         // Both on the edge's line: the middle of their stretch along it, clamped to the edge.
         const Vec2<B> other = cp + rotated(tp, sp.vertices[j]);
-        const B s0 = std::clamp(B(dot(g.point - qa, e)), B(0), ee), s1 = std::clamp(B(dot(other - qa, e)), B(0), ee);
+        const B a0 = dot(g.point - qa, e), a1 = dot(other - qa, e);
+        const B s0 = std::clamp(a0, B(0), ee), s1 = std::clamp(a1, B(0), ee);
         g.point = qa + e * ((s0 + s1) / (B(2) * ee));
+        // Both vertices on the edge: the middle of the two, in P's frame; else (clamped to an
+        // end) the middle on the edge, from world coordinates.
+        arm_p = s0 == a0 && s1 == a1 ? rotated(tp, (sp.vertices[c.point] + sp.vertices[j]) * B(0.5)) : g.point - cp;
         g.face_on_face = true;
         break;
       }
     }
+    arm_q = centres + arm_p;
   }
   g.normal = c.point_on_a ? -out : out;
+  g.arm_a = c.point_on_a ? arm_p : arm_q;
+  g.arm_b = c.point_on_a ? arm_q : arm_p;
   return g;
 }
 

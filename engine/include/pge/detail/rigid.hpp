@@ -77,12 +77,11 @@ template <class T> struct Impulse {
   bool applied = false;
 };
 
-// The impulse of a contact at P between a (centre ca) and b (centre cb) along n (from a to b),
-// restitution e; a and b are updated in place when the pair approaches.
+// The same with the lever arms ra = P - ca and rb = P - cb given (a caller that knows them more
+// precisely than the difference of world coordinates: detail::RotatingGeometry).
 template <class T>
-Impulse<T> apply_rigid_impulse(RigidState<T>& a, const Vec2<T>& ca, RigidState<T>& b, const Vec2<T>& cb,
-                               const Vec2<T>& P, const Vec2<T>& n, const T& e) {
-  const Vec2<T> ra = P - ca, rb = P - cb;
+Impulse<T> apply_rigid_impulse_with_arms(RigidState<T>& a, const Vec2<T>& ra, RigidState<T>& b, const Vec2<T>& rb,
+                                         const Vec2<T>& n, const T& e) {
   const Vec2<T> ua = a.v + perp(ra) * a.w, ub = b.v + perp(rb) * b.w;
   Impulse<T> out;
   out.v_n = dot(ub - ua, n);
@@ -96,6 +95,14 @@ Impulse<T> apply_rigid_impulse(RigidState<T>& a, const Vec2<T>& ca, RigidState<T
   a.w -= ran * out.j * a.inv_inertia;
   b.w += rbn * out.j * b.inv_inertia;
   return out;
+}
+
+// The impulse of a contact at P between a (centre ca) and b (centre cb) along n (from a to b),
+// restitution e; a and b are updated in place when the pair approaches.
+template <class T>
+Impulse<T> apply_rigid_impulse(RigidState<T>& a, const Vec2<T>& ca, RigidState<T>& b, const Vec2<T>& cb,
+                               const Vec2<T>& P, const Vec2<T>& n, const T& e) {
+  return apply_rigid_impulse_with_arms(a, P - ca, b, P - cb, n, e);
 }
 
 }  // namespace pge::detail

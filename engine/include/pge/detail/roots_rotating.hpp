@@ -87,13 +87,29 @@ template <class B> struct WaveSum {
   std::array<Wave<B>, kMaxWaves> waves{};
   int wave_count = 0;
 
-  Interval<B> operator()(const Interval<B>& t) const {
+  Interval<B> operator()(const Interval<B>& t) const { return (*this)(t, waves_at(t)); }
+
+  // The sines and cosines of every wave's argument over t: what f, its derivatives and anything
+  // else with the same waves (derivative() keeps them) share at t, computed once.
+  using Phases = std::array<SinCos<B>, kMaxWaves>;
+  Phases waves_at(const Interval<B>& t) const {
+    const Interval<B> s = t - Interval<B>(origin);
+    Phases out{};
+    for (int j = 0; j < wave_count; ++j) {
+      const Wave<B>& w = waves[static_cast<std::size_t>(j)];
+      out[static_cast<std::size_t>(j)] = sin_cos(w.omega * s + w.phase);
+    }
+    return out;
+  }
+  // f over t from its waves' sines and cosines there (waves_at(t), of this sum or of one with
+  // the same waves).
+  Interval<B> operator()(const Interval<B>& t, const Phases& sc) const {
     const Interval<B> s = t - Interval<B>(origin);
     Interval<B> v = base(s);
     for (int j = 0; j < wave_count; ++j) {
       const Wave<B>& w = waves[static_cast<std::size_t>(j)];
-      const SinCos<B> sc = sin_cos(w.omega * s + w.phase);
-      v = v + w.cos_part(s) * sc.cos + w.sin_part(s) * sc.sin;
+      const SinCos<B>& p = sc[static_cast<std::size_t>(j)];
+      v = v + w.cos_part(s) * p.cos + w.sin_part(s) * p.sin;
     }
     return v;
   }
@@ -154,6 +170,22 @@ template <class B> class WaveRootFinder {
  public:
   WaveRootFinder(const WaveSum<B>& f, StartRule rule) : f_(f), d1_(f.derivative()), d2_(d1_.derivative()), rule_(rule) {}
 
+  // Only crossings where `along` may lie in [0, length_sq] count (a point against an edge: the
+  // point's place along the edge's line); a box where it certainly lies outside is dropped before
+  // f is enclosed on it. Most boxes of a vertex against an edge are such boxes, and a crossing of
+  // the edge's line beyond its ends would otherwise be narrowed to adjacent values first.
+  void only_where(const WaveSum<B>* along, const Interval<B>& length_sq) {
+    along_ = along;
+    length_sq_ = length_sq;
+    const auto same = [](const Interval<B>& x, const Interval<B>& y) { return x.lo() == y.lo() && x.hi() == y.hi(); };
+    along_same_waves_ = along->wave_count == f_.wave_count;
+    for (int j = 0; j < f_.wave_count && along_same_waves_; ++j) {
+      const Wave<B>& u = f_.waves[static_cast<std::size_t>(j)];
+      const Wave<B>& v = along->waves[static_cast<std::size_t>(j)];
+      along_same_waves_ = same(u.omega, v.omega) && same(u.phase, v.phase) && along->origin == f_.origin;
+    }
+  }
+
   WaveRoot<B> earliest(const B& lo, const B& hi, std::uint64_t max_boxes) {
     WaveRoot<B> out;
     out.t = hi;
@@ -209,9 +241,13 @@ template <class B> class WaveRootFinder {
   // f over [a, b]: the natural enclosure and the mean-value form, intersected.
   Interval<B> enclose(const Box& box, const Interval<B>& slope) const {
     const Interval<B> x(box.a, box.b);
+    return enclose(box, slope, f_(x));
+  }
+  Interval<B> enclose(const Box& box, const Interval<B>& slope, const Interval<B>& natural) const {
+    const Interval<B> x(box.a, box.b);
     const B m = midpoint(box.a, box.b);
     const Interval<B> mean = at(f_, m) + slope * (x - Interval<B>(m));
-    return intersect(f_(x), mean);
+    return intersect(natural, mean);
   }
 
   // Splits the box (right half pushed first, so the left is visited first); false if it cannot
@@ -226,12 +262,19 @@ template <class B> class WaveRootFinder {
 
   std::optional<Found> visit(const Box& box) {
     const Interval<B> x(box.a, box.b);
-    const Interval<B> slope = d1_(x);
-    const Interval<B> value = enclose(box, slope);
+    // f, f' and f'' over the box share its waves' sines and cosines, and so does `along` where
+    // it has the same waves (a point against an edge: built wave for wave with the gap).
+    const typename WaveSum<B>::Phases phases = f_.waves_at(x);
+    if (along_) {
+      const Interval<B> s = along_same_waves_ ? (*along_)(x, phases) : (*along_)(x);
+      if (s.hi() < B(0) || s.lo() > length_sq_.hi()) return std::nullopt;  // off the edge throughout
+    }
+    const Interval<B> slope = d1_(x, phases);
+    const Interval<B> value = enclose(box, slope, f_(x, phases));
     if (value.positive() || value.negative()) return std::nullopt;  // no zero
     if (slope.positive()) return std::nullopt;                      // rising: no downward zero
     if (slope.negative()) return monotone(box);
-    const Interval<B> curve = d2_(x);
+    const Interval<B> curve = d2_(x, phases);
     if (curve.positive()) return convex(box);
     if (split(box)) return std::nullopt;
     return Found{box.a};  // a box of adjacent values that may hold a crossing
@@ -324,6 +367,9 @@ template <class B> class WaveRootFinder {
   const WaveSum<B>& f_;
   WaveSum<B> d1_, d2_;
   StartRule rule_;
+  const WaveSum<B>* along_ = nullptr;
+  Interval<B> length_sq_;
+  bool along_same_waves_ = false;
   std::vector<Box> stack_;
   struct NoWide {};
   std::optional<std::conditional_t<has_wider, WaveSum<Wide>, NoWide>> wide_;
@@ -334,6 +380,16 @@ template <class B>
 WaveRoot<B> earliest_wave_root(const WaveSum<B>& f, const B& lo, const B& hi, StartRule rule,
                                std::uint64_t max_boxes) {
   WaveRootFinder<B> finder(f, rule);
+  return finder.earliest(lo, hi, max_boxes);
+}
+
+// The same, counting only crossings where `along` may lie in [0, length_sq]
+// (WaveRootFinder::only_where).
+template <class B>
+WaveRoot<B> earliest_wave_root_on(const WaveSum<B>& f, const WaveSum<B>& along, const Interval<B>& length_sq,
+                                  const B& lo, const B& hi, StartRule rule, std::uint64_t max_boxes) {
+  WaveRootFinder<B> finder(f, rule);
+  finder.only_where(&along, length_sq);
   return finder.earliest(lo, hi, max_boxes);
 }
 
