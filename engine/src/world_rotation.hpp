@@ -6,8 +6,9 @@
 // (predict_rotating), the impulse test at the horizon (rotating_approaching) and the collision
 // (collide_rotating). The translate-only subsystems never see such a pair: the exact refinement
 // skips its contacts (they are scheduled refined, the predictor's time standing), a rotating
-// body never rests on a face and no body rests on a rotating one, and the overlap measures read
-// the turned vertices (separation_at). A scene without a rotating body runs none of this.
+// body rests on a fixed face only while it does not turn (landed face on face, omega exactly 0)
+// and no body rests on a rotating one, and the overlap measures read the turned vertices
+// (separation_at). A scene without a rotating body runs none of this.
 #pragma once
 
 #include "world_impl.hpp"
@@ -83,7 +84,8 @@ inline auto World<T>::Impl::predict_rotating(BodyIndex lo, BodyIndex hi, const T
   const Vec2<T> dv = kb.v - ka.v;
   const T speed = sqrt(dot(dv, dv)) + abs(sa.path.omega) * sa.reach + abs(sb.path.omega) * sb.reach;
   const T span = T(kRotatingWindowReaches) * (sa.reach + sb.reach);
-  const T end = speed > T(0) && span / speed < wanted - now ? now + span / speed : wanted;
+  T end = speed > T(0) && span / speed < wanted - now ? now + span / speed : wanted;
+  if (!(end > now)) end = std::min(wanted, detail::interval_next_up(now));  // progress, however late the clock
   const detail::RotatingContact<T> c =
       detail::predict_rotating_pair(sa, sb, now, end, StartRule::OverlapCollides, detail::RotatingOptions{});
   PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
