@@ -98,6 +98,7 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   j["frames"] = n.frames;
   j["stale"] = n.stale;
   j["predictions"] = n.predictions;
+  j["undecided_roundings"] = n.undecided_roundings;
   j["broad_phase"] = broad_phase_name(world.broad_phase());
   j["cell_crossings"] = n.crossings;
   j["global_bodies"] = n.global_bodies;
@@ -160,6 +161,9 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
     fmt::print("  state hash: {:#018x}\n", hash);
     fmt::print("  speed: {} collisions in {:.3f} s: {:.0f} events/s ({} predictions, {} stale queue entries)\n",
                n.collisions, wall, wall > 0 ? static_cast<double>(n.collisions) / wall : 0.0, n.predictions, n.stale);
+    if (n.undecided_roundings > 0)
+      fmt::print("  undecided roundings: {} rotating contact times kept robust's placement (certified could not "
+                 "decide their rounding)\n", n.undecided_roundings);
     if (world.broad_phase() == BroadPhase::Grid)
       fmt::print("  broad phase: grid, {} cell crossings, {} bodies outside the grid\n", n.crossings, n.global_bodies);
   }

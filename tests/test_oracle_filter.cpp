@@ -114,15 +114,18 @@ TEST(OracleFilter, EngineRunsGetTheSameVerdictsWithAndWithoutTheFilter) {
 
 // The spatial filter must keep a pair that is far apart but fast, or at rest but accelerating:
 // time is stepped on (take_motion of a bystander, which searches up to each step) until the
-// referee reports the contact it passed; the spatial filter's answers equal the unfiltered ones
-// at every step, and the contact is the one the mathematics gives.
+// referee reports the contact it passed; the spatial filter's answers equal those of the
+// interval filter on every pair (the O(N) sweep it replaces, independent of its grid) at every
+// step, and the contact is the one the mathematics gives. (Every pair solved exactly at every
+// step, 5,000 pairs of CGAL, took a minute under the sanitizers; the fixture scenes compare all
+// three referees.)
 struct SteppedContact {
   std::optional<ExactTime> time;
   std::vector<PairContact> pairs;
 };
 
 SteppedContact step_until_contact(const ExactState& s, double step, int steps) {
-  Referee with(s, {true, kAgreeUlps, true}), without(s, {false, kAgreeUlps});
+  Referee with(s, {true, kAgreeUlps, true}), without(s, {true, kAgreeUlps, false});
   const ExactMotion still = s.bodies[0].motion;  // body 0: a bystander that never moves
   for (int k = 1; k <= steps; ++k) {
     const Dyadic t = Dyadic::from(step * k);

@@ -58,6 +58,32 @@ template <class B> void check_point_enclosures(int n, double max_width_eps) {
   EXPECT_LE(worst, max_width_eps);
 }
 
+// The outward steps every interval bound takes: long double's own bit stepping (interval.hpp)
+// against libm's nextafterl, at random values over many binades and at every power of two with
+// its neighbours (the carries into and borrows from the exponent, subnormals, the extremes).
+TEST(RotationTrig, LongDoubleStepsAreLibmsNextafter) {
+  using LD = long double;
+  const LD inf = std::numeric_limits<LD>::infinity();
+  long checked = 0;
+  const auto check = [&](const LD x) {
+    ++checked;
+    ASSERT_EQ(pge::detail::interval_next_up(x), std::nextafter(x, inf)) << static_cast<double>(x);
+    ASSERT_EQ(pge::detail::interval_next_down(x), std::nextafter(x, -inf)) << static_cast<double>(x);
+  };
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 100000; ++i) check(std::ldexp(LD(u(rng)), static_cast<int>(rng() % 400) - 200) + LD(u(rng)) * 1e-30L);
+  for (int e = std::numeric_limits<LD>::min_exponent - 70; e <= std::numeric_limits<LD>::max_exponent; ++e) {
+    const LD p = std::ldexp(LD(1), e - 1);
+    for (const LD x : {p, LD(-p)})
+      for (const LD y : {x, std::nextafter(x, LD(0)), std::nextafter(x, inf), std::nextafter(x, -inf)}) check(y);
+  }
+  for (const LD x : {LD(0), std::numeric_limits<LD>::max(), -std::numeric_limits<LD>::max(),
+                     std::numeric_limits<LD>::denorm_min(), std::numeric_limits<LD>::min()})
+    check(x);
+  EXPECT_GT(checked, 200000);
+}
+
 TEST(RotationTrig, PointEnclosuresHoldTheTrueValueAndAreTight) {
   check_point_enclosures<double>(20000, 6);
   check_point_enclosures<long double>(5000, 6);

@@ -86,8 +86,10 @@ inline auto World<T>::Impl::predict_rotating(BodyIndex lo, BodyIndex hi, const T
   const T span = T(kRotatingWindowReaches) * (sa.reach + sb.reach);
   T end = speed > T(0) && span / speed < wanted - now ? now + span / speed : wanted;
   if (!(end > now)) end = std::min(wanted, detail::interval_next_up(now));  // progress, however late the clock
-  const detail::RotatingContact<T> c =
-      detail::predict_rotating_pair(sa, sb, now, end, StartRule::OverlapCollides, detail::RotatingOptions{});
+  detail::RotatingOptions options;
+  options.correctly_rounded = solver == SolverKind::Certified;
+  const detail::RotatingContact<T> c = detail::predict_rotating_pair(sa, sb, now, end, StartRule::OverlapCollides, options);
+  if (c.rounding_undecided) ++counts.undecided_roundings;
   PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
   out.rotating = true;
   if (c.status == RootStatus::None) {

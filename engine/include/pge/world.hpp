@@ -82,6 +82,9 @@ struct EventCounts {
   std::uint64_t leaves = 0;       // resting bodies that slid off a face's end
   std::uint64_t crossings = 0;    // broad phase: a moving body moved to another cell
   std::uint64_t global_bodies = 0;  // broad phase: bodies the grid does not hold (broad_phase.hpp)
+  // certified, pairs with a rotating body: predicted contact times whose rounding could not be
+  // decided (docs/rotation.md); each kept the robust placement, within a few ulps.
+  std::uint64_t undecided_roundings = 0;
 };
 
 // The closed-form path the engine holds for a body: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2

@@ -31,6 +31,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -44,6 +45,35 @@ template <class B> B interval_next_up(const B& x) {
     using U = std::conditional_t<std::is_same_v<B, double>, std::uint64_t, std::uint32_t>;
     const U bits = std::bit_cast<U>(x);
     return std::bit_cast<B>(x > B(0) ? U(bits + 1) : U(bits - 1));
+  } else if constexpr (std::is_same_v<B, long double> && std::numeric_limits<long double>::digits == 64) {
+    // x87 extended: an explicit 64-bit significand (integer bit set in normal numbers) and a
+    // 15-bit biased exponent with the sign. A normal value steps by one in the significand,
+    // carrying into the exponent; the rest (subnormals, the binades next to them) goes to libm,
+    // whose nextafterl is ten times slower (a tenth of a rotating search's time).
+    struct Parts {
+      std::uint64_t significand;
+      std::uint16_t sign_exponent;
+    };
+    Parts p{};
+    std::memcpy(&p, &x, sizeof p);
+    const unsigned exponent = p.sign_exponent & 0x7fffu;
+    const bool negative = (p.sign_exponent & 0x8000u) != 0;
+    constexpr std::uint64_t integer_bit = std::uint64_t{1} << 63;
+    if (exponent > 1 && exponent < 0x7ffe && (p.significand & integer_bit) != 0) {
+      if (!negative) {
+        if (++p.significand == 0) {
+          p.significand = integer_bit;
+          ++p.sign_exponent;
+        }
+      } else if (p.significand-- == integer_bit) {
+        p.significand = ~std::uint64_t{0};
+        --p.sign_exponent;
+      }
+      long double r;
+      std::memcpy(&r, &p, sizeof p);
+      return r;
+    }
+    return std::nextafter(x, std::numeric_limits<B>::infinity());
   } else if constexpr (std::is_floating_point_v<B>) {
     return std::nextafter(x, std::numeric_limits<B>::infinity());
   } else {

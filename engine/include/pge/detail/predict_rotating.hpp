@@ -55,13 +55,26 @@ template <class B> struct RotatingContact {
   bool point_on_a = false;       // the vertex (or the circle) belongs to a; the edge (or vertex) to b
   std::size_t point = 0, edge = 0;  // the vertex index (VertexEdge); the edge index (k: vertex k to k + 1) or vertex
   std::uint64_t boxes = 0;       // work: boxes enclosed over every search
+  // correctly_rounded asked, and the rounding of this root to B could not be decided in the
+  // certifying type (CorrectRounding): t is then the robust placement.
+  bool rounding_undecided = false;
 };
 
 struct RotatingOptions {
   std::uint64_t max_boxes = 100000;  // per feature search
   bool bounding_circles = true;      // start where the bounding circles can first touch
   bool advance = true;               // then advance conservatively while the shapes are far apart
+  // The certified solver's promise: a crossing's time is the nearest value of B to the exact
+  // contact time of the stored paths (round_correctly), or marked rounding_undecided.
+  bool correctly_rounded = false;
 };
+
+// The type in which the certified solver decides a rounding to B: wide enough that its own
+// rounding (about 2^-113 relative for Quad) is far below the distance from a transversal root to
+// the middle between two values of B (half an ulp of B times the slope).
+template <class B> struct Certifying { using type = Quad; };
+template <> struct Certifying<float> { using type = double; };
+template <> struct Certifying<Quad> { using type = Wide240; };
 
 template <class B> class RotatingPairPredictor {
  public:
@@ -347,10 +360,49 @@ template <class B> class RotatingPairPredictor {
   // less than the first placement's doubt is still found.
   void take(WaveRoot<B> r, const Which& which) {
     if (r.status == RootStatus::None || !(r.t <= best_.t)) return;
-    if (r.status == RootStatus::Root && !r.at_start_overlap && !r.tangent) r.t = refine(which, r.t, best_.t);
+    bool undecided = false;
+    if (r.status == RootStatus::Root && !r.at_start_overlap && !r.tangent) {
+      r.t = refine(which, r.t, best_.t);
+      if (opt_.correctly_rounded) {
+        if (const std::optional<B> nearest = round_correctly(which, r.t)) r.t = *nearest;
+        else undecided = true;
+      }
+    }
     if (r.t == best_.t && best_.status == RootStatus::Root) return;  // ties: the first found stays
     best_ = {r.status, r.t, r.at_start_overlap, r.tangent, which.feature, which.point_on_a, which.point, which.edge,
-             best_.boxes};
+             best_.boxes, undecided};
+  }
+
+  // The value of B nearest to the downward crossing placed at t (the first value of B at which
+  // the function is not certainly positive, up to rounding): the crossing is bracketed between
+  // adjacent values lo < hi of B with the function certainly positive at lo and certainly
+  // negative at hi, both evaluated in Certifying<B> from the stored values, then its sign at
+  // their middle (exact in that type) decides: positive, the crossing is past the middle (hi);
+  // negative, before it (lo). Nothing where a sign stays undecided (a crossing within the
+  // certifying type's rounding of a value of B or of a middle, or a tangency) or the bracket is
+  // not within a few values of t.
+  std::optional<B> round_correctly(const Which& which, const B& t) const {
+    using W = typename Certifying<B>::type;
+    const WaveSum<W> f = wide_function<W>(which);
+    const auto sign = [&](const W& x) {
+      const Interval<W> v = f(Interval<W>(x));
+      return v.positive() ? 1 : v.negative() ? -1 : 0;
+    };
+    constexpr int kSteps = 4;
+    B hi = t;
+    int s_hi = sign(W(hi));
+    for (int k = 0; k < kSteps && s_hi > 0; ++k) s_hi = sign(W(hi = interval_next_up(hi)));
+    if (s_hi >= 0) return std::nullopt;
+    B lo = interval_next_down(hi);
+    int s_lo = sign(W(lo));
+    for (int k = 0; k < kSteps && s_lo < 0; ++k) {
+      hi = lo;
+      s_lo = sign(W(lo = interval_next_down(lo)));
+    }
+    if (s_lo <= 0) return std::nullopt;
+    const int s_mid = sign(W(lo) + (W(hi) - W(lo)) / W(2));
+    if (s_mid == 0) return std::nullopt;
+    return s_mid > 0 ? hi : lo;
   }
 
   // The crossing of `which` at or after t (the first value of B at which its function, built in
@@ -419,7 +471,8 @@ template <class B> class RotatingPairPredictor {
 // Face on face. When the vertex's neighbour along its own outline cannot be told from touching
 // the same edge at that time either (its gap's enclosure is not certainly positive: the struck
 // vertex itself may be certainly an ulp past the line at its contact time, and a neighbour on
-// the same line with it) and lies on the edge, the
+// the same line with it; or not certainly farther from the line than the struck vertex: a
+// correctly rounded time may be the double just before the crossing) and lies on the edge, the
 // two faces meet along a stretch, not at a point: the point is then the middle of the stretch
 // (of the two vertices' positions along the edge, clamped to it), on the struck edge's line,
 // and the normal the edge's. The middle because a face that lands flat must bounce without
@@ -488,12 +541,18 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
       const PathAt<B> P = path_at(sp.path, c.t), Q = path_at(sq.path, c.t);
       const Interval<B> at(c.t);
       const B ee = dot(e, e);
+      const Interval<B> struck =
+          point_edge_functions(P, sp.vertices[c.point], B(0), Q, sq.vertices[c.edge], sq.vertices[(c.edge + 1) % n])
+              .gap(at);
       for (const std::size_t j : {(c.point + 1) % m, (c.point + m - 1) % m}) {
         if (j == c.point) continue;
         const FeatureFunctions<B> f =
             point_edge_functions(P, sp.vertices[j], B(0), Q, sq.vertices[c.edge], sq.vertices[(c.edge + 1) % n]);
-        const Interval<B> along = f.along(at);
-        if (f.gap(at).positive() || along.hi() < B(0) || along.lo() > f.length_sq.hi()) continue;
+        const Interval<B> along = f.along(at), gap = f.gap(at);
+        // Touching the line, or no farther from it than the struck vertex (a certified time
+        // rounded to the double before the crossing: both an ulp's travel short of the line).
+        if ((gap.positive() && (gap - struck).positive()) || along.hi() < B(0) || along.lo() > f.length_sq.hi())
+          continue;
         // Both on the edge's line: the middle of their stretch along it, clamped to the edge.
         const Vec2<B> other = cp + rotated(tp, sp.vertices[j]);
         const B a0 = dot(g.point - qa, e), a1 = dot(other - qa, e);

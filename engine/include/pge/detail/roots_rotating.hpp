@@ -101,6 +101,33 @@ template <class B> struct WaveSum {
     }
     return out;
   }
+  // The same over t from their values at a point m of t (what the mean-value form needs there
+  // anyway): for an argument x of the box and y its value at m, d = x - y lies in the difference
+  // of their enclosures D, and sin x = sin y + d cos y - (d^2 / 2) sin z (Taylor with Lagrange's
+  // remainder), so sin over t lies in S + C D + [-1, 1] D^2 / 2, cos in C - S D + [-1, 1] D^2 / 2.
+  // One enclosure of sin and cos at a point instead of two at the ends: as tight to first order
+  // for the narrow boxes a search spends most of its time on. Where D is not small (a box over a
+  // good part of a turn) the ends' enclosures are taken instead.
+  Phases waves_near(const Interval<B>& t, const B& m, const Phases& at_m) const {
+    const Interval<B> s = t - Interval<B>(origin), sm = Interval<B>(m) - Interval<B>(origin);
+    const Interval<B> unit(B(-1), B(1)), half(B(0.5));
+    Phases out{};
+    for (int j = 0; j < wave_count; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      const Wave<B>& w = waves[k];
+      const Interval<B> arg = w.omega * s + w.phase;
+      const Interval<B> d = arg - (w.omega * sm + w.phase);
+      if (!(d.magnitude() < B(0.5))) {
+        out[k] = sin_cos(arg);
+        continue;
+      }
+      const Interval<B> rest = unit * (d.square() * half);
+      const SinCos<B>& p = at_m[k];
+      out[k].sin = intersect((p.sin + p.cos * d + rest).clamp(B(-1), B(1)), unit);
+      out[k].cos = intersect((p.cos - p.sin * d + rest).clamp(B(-1), B(1)), unit);
+    }
+    return out;
+  }
   // f over t from its waves' sines and cosines there (waves_at(t), of this sum or of one with
   // the same waves).
   Interval<B> operator()(const Interval<B>& t, const Phases& sc) const {
@@ -238,16 +265,15 @@ template <class B> class WaveRootFinder {
 
   Interval<B> at(const WaveSum<B>& g, const B& x) const { return g(Interval<B>(x)); }
 
-  // f over [a, b]: the natural enclosure and the mean-value form, intersected.
-  Interval<B> enclose(const Box& box, const Interval<B>& slope) const {
-    const Interval<B> x(box.a, box.b);
-    return enclose(box, slope, f_(x));
+  // f over [a, b]: the natural enclosure and the mean-value form about the middle m, intersected
+  // (f_x: f over the box; f_m: f at m).
+  static Interval<B> enclose(const Box& box, const B& m, const Interval<B>& slope, const Interval<B>& f_x,
+                             const Interval<B>& f_m) {
+    return intersect(f_x, f_m + slope * (Interval<B>(box.a, box.b) - Interval<B>(m)));
   }
-  Interval<B> enclose(const Box& box, const Interval<B>& slope, const Interval<B>& natural) const {
-    const Interval<B> x(box.a, box.b);
+  Interval<B> enclose(const Box& box, const Interval<B>& slope) const {
     const B m = midpoint(box.a, box.b);
-    const Interval<B> mean = at(f_, m) + slope * (x - Interval<B>(m));
-    return intersect(natural, mean);
+    return enclose(box, m, slope, f_(Interval<B>(box.a, box.b)), at(f_, m));
   }
 
   // Splits the box (right half pushed first, so the left is visited first); false if it cannot
@@ -264,13 +290,15 @@ template <class B> class WaveRootFinder {
     const Interval<B> x(box.a, box.b);
     // f, f' and f'' over the box share its waves' sines and cosines, and so does `along` where
     // it has the same waves (a point against an edge: built wave for wave with the gap).
-    const typename WaveSum<B>::Phases phases = f_.waves_at(x);
+    const B m = midpoint(box.a, box.b);
+    const typename WaveSum<B>::Phases at_m = f_.waves_at(Interval<B>(m));
+    const typename WaveSum<B>::Phases phases = f_.waves_near(x, m, at_m);
     if (along_) {
       const Interval<B> s = along_same_waves_ ? (*along_)(x, phases) : (*along_)(x);
       if (s.hi() < B(0) || s.lo() > length_sq_.hi()) return std::nullopt;  // off the edge throughout
     }
     const Interval<B> slope = d1_(x, phases);
-    const Interval<B> value = enclose(box, slope, f_(x, phases));
+    const Interval<B> value = enclose(box, m, slope, f_(x, phases), f_(Interval<B>(m), at_m));
     if (value.positive() || value.negative()) return std::nullopt;  // no zero
     if (slope.positive()) return std::nullopt;                      // rising: no downward zero
     if (slope.negative()) return monotone(box);
@@ -295,6 +323,11 @@ template <class B> class WaveRootFinder {
     const Interval<B> f_start = at(f_, box.a);
     if (f_start.negative()) return std::nullopt;  // below zero and then at most one rise
     if (at(d1_, box.b).negative()) return monotone(box);  // f' < 0 throughout
+    // f' > 0 at the start: rising throughout (f' rises), no downward zero. Without this a box
+    // whose enclosure of f' was too wide to show it (one about a middle over a wide box) would
+    // report a tangency at its start, and a search resumed past a graze (past_tangency, an ulp
+    // on) would find it again an ulp later, for ever.
+    if (at(d1_, box.a).positive()) return std::nullopt;
     // Bisect for the minimum t*, keeping f'(a) < 0 certainly and f'(b) not certainly < 0.
     B a = box.a, b = box.b;
     const bool falls = at(d1_, a).negative();
@@ -333,34 +366,77 @@ template <class B> class WaveRootFinder {
   // polynomials): the place is then known to B's own precision wherever the coefficients are
   // exact in B (the stored doubles, say), however small the time against the turn. In B alone f,
   // a difference of terms of size one near a root, would leave eps / |f'| of doubt.
+  //
+  // The probes are placed by regula falsi on the enclosures' middles (Illinois variant: the end
+  // kept twice in a row has its value halved, so that both ends move), at least a value of B
+  // inside the bracket, with a bisection after three probes in a row that did not halve it: the
+  // same first value as bisection alone wherever the predicate switches once (any bracket gives
+  // it), in a fraction of the probes on a transversal crossing, and never more than four times
+  // bisection's on any.
   B narrow(B a, B b) {
     bool wide = false;
+    B fa = at(f_, a).mid(), fb = at(f_, b).mid();
+    int kept = 0;  // +1: the last probe kept a (moved b), -1: kept b; 0: a bisection
+    int slow = 0;  // probes in a row that did not halve the bracket
     for (;;) {
       const B m = midpoint(a, b);
       if (!splittable(a, b, m)) return b;
-      int sign = wide ? sign_wide(m) : sign_at(m);
-      if (sign == 0 && !wide && has_wider) {
-        wide = true;
-        sign = sign_wide(m);
+      B x = m;
+      if (slow < 3 && fa > B(0) && fb < B(0)) {
+        // Regula falsi, at least one value of B inside either end (the step an estimate within
+        // an ulp of the crossing needs to land on its other side).
+        const B guess = a + (b - a) * (fa / (fa - fb));
+        x = std::clamp(guess, interval_next_up(a), interval_next_down(b));
+        if (!(a < x && x < b)) x = m;
       }
-      if (sign > 0) a = m;
-      else b = m;
+      Probe p = wide ? probe_wide(x) : probe(x);
+      if (p.sign == 0 && !wide && has_wider) {
+        // The ends' values again in the wider type: in B they are mostly rounding this close to
+        // the crossing, and secant steps on them would be guesses.
+        wide = true;
+        p = probe_wide(x);
+        fa = probe_wide(a).value;
+        fb = probe_wide(b).value;
+        kept = 0;
+      }
+      const B width = b - a;
+      using std::abs;
+      if (p.sign > 0) {
+        a = x;
+        fa = p.value;
+        if (kept == -1) fb = fb / B(2);
+        kept = x == m ? 0 : -1;
+      } else {
+        b = x;
+        // Within rounding of zero the middle may even be positive: the crossing is within the
+        // enclosure's width of x, which is what the secant needs to know.
+        fb = p.value < B(0) ? p.value : -std::max(abs(p.value), std::numeric_limits<B>::denorm_min());
+        if (kept == 1) fa = fa / B(2);
+        kept = x == m ? 0 : 1;
+      }
+      slow = b - a > width / B(2) ? slow + 1 : 0;
     }
   }
 
-  int sign_at(const B& x) const {
+  // f's sign at x (0: the enclosure holds zero) and an estimate of its value (the middle).
+  struct Probe {
+    int sign;
+    B value;
+  };
+  Probe probe(const B& x) const {
     const Interval<B> v = at(f_, x);
-    return v.positive() ? 1 : v.negative() ? -1 : 0;
+    return {v.positive() ? 1 : v.negative() ? -1 : 0, v.mid()};
   }
   using Wide = typename Wider<B>::type;
   static constexpr bool has_wider = !std::is_void_v<Wide> && !std::is_same_v<B, Quad>;
-  int sign_wide(const B& x) {
+  // The same, f evaluated in the wider type.
+  Probe probe_wide(const B& x) {
     if constexpr (has_wider) {
       if (!wide_) wide_ = widen<Wide>(f_);
       const Interval<Wide> v = (*wide_)(Interval<Wide>(Wide(x)));
-      return v.positive() ? 1 : v.negative() ? -1 : 0;
+      return {v.positive() ? 1 : v.negative() ? -1 : 0, B(v.mid())};
     } else {
-      return sign_at(x);
+      return probe(x);
     }
   }
 
