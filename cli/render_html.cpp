@@ -28,22 +28,26 @@ std::string animation_json(const Run& run, const View& v) {
     switch (b.shape) {
       case ShapeKind::Circle: out += fmt::format("\"shape\":\"circle\",\"r\":{}", v.len(b.radius)); break;
       case ShapeKind::Segment:
-        out += fmt::format("\"shape\":\"segment\",\"v\":[{},{},{},{}]", v.len(b.a.x), v.len(b.a.y), v.len(b.b.x),
-                           v.len(b.b.y));
-        break;
-      case ShapeKind::Polygon:
-        out += "\"shape\":\"polygon\",\"v\":[";
-        for (std::size_t k = 0; k < b.vertices.size(); ++k)
-          out += fmt::format("{}{},{}", k ? "," : "", v.len(b.vertices[k].x), v.len(b.vertices[k].y));
+      case ShapeKind::Polygon: {
+        // A turning body's vertices are about its pivot (its samples' p), turned by "a".
+        const std::vector<Vec2d>& vs = !run.turning[i].empty()          ? run.turning[i]
+                                       : b.shape == ShapeKind::Polygon ? b.vertices
+                                                                        : std::vector<Vec2d>{b.a, b.b};
+        out += fmt::format("\"shape\":\"{}\",\"v\":[", b.shape == ShapeKind::Polygon ? "polygon" : "segment");
+        for (std::size_t k = 0; k < vs.size(); ++k) out += fmt::format("{}{},{}", k ? "," : "", v.len(vs[k].x), v.len(vs[k].y));
         out += ']';
         break;
+      }
     }
-    std::string times, points;
+    std::string times, points, angles;
     for (const Sample& s : run.paths[i]) {
       times += (times.empty() ? "" : ",") + v.t(s.t);
       points += (points.empty() ? "" : ",") + v.x(s.p.x) + "," + v.y(s.p.y);
+      angles += fmt::format("{}{:.9g}", angles.empty() ? "" : ",", s.angle);
     }
-    out += fmt::format(",\"t\":[{}],\"p\":[{}]}}", times, points);
+    out += fmt::format(",\"t\":[{}],\"p\":[{}]", times, points);
+    if (!run.turning[i].empty()) out += fmt::format(",\"a\":[{}]", angles);
+    out += '}';
   }
   out += "],\n\"marks\":[";
   for (std::size_t k = 0; k < run.marks.size(); ++k) {
@@ -101,22 +105,28 @@ constexpr const char* kAnimationScript = R"JS(
     }
     return lo - 1;
   }
+  // [x, y, sample index, angle]: a turning body's angle grows linearly between samples (its
+  // rate changes only at collisions, which are samples), so interpolating it is exact.
   function position(b, t) {
     const i = lastAtOrBefore(b.t, t, 1);
-    if (i < 0) return [b.p[0], b.p[1], 0];
-    if (i + 1 >= b.t.length) return [b.p[2 * i], b.p[2 * i + 1], i];
+    const angle = (k) => (b.a ? b.a[k] : 0);
+    if (i < 0) return [b.p[0], b.p[1], 0, angle(0)];
+    if (i + 1 >= b.t.length) return [b.p[2 * i], b.p[2 * i + 1], i, angle(i)];
     const t0 = b.t[i], t1 = b.t[i + 1];
     const f = t1 > t0 ? (t - t0) / (t1 - t0) : 1;
-    return [b.p[2 * i] + f * (b.p[2 * i + 2] - b.p[2 * i]), b.p[2 * i + 1] + f * (b.p[2 * i + 3] - b.p[2 * i + 1]), i];
+    return [b.p[2 * i] + f * (b.p[2 * i + 2] - b.p[2 * i]), b.p[2 * i + 1] + f * (b.p[2 * i + 3] - b.p[2 * i + 1]), i,
+            angle(i) + f * (angle(i + 1) - angle(i))];
   }
-  function shapePath(b, x, y) {
+  function shapePath(b, x, y, a) {
     ctx.beginPath();
     if (b.shape === "circle") {
       ctx.arc(X(x), Y(y), Math.max(b.r * scale, 0.5), 0, 2 * Math.PI);
     } else {
+      const c = Math.cos(a), s = Math.sin(a);
       for (let k = 0; k < b.v.length; k += 2) {
-        if (k === 0) ctx.moveTo(X(x + b.v[k]), Y(y + b.v[k + 1]));
-        else ctx.lineTo(X(x + b.v[k]), Y(y + b.v[k + 1]));
+        const vx = x + c * b.v[k] - s * b.v[k + 1], vy = y + s * b.v[k] + c * b.v[k + 1];
+        if (k === 0) ctx.moveTo(X(vx), Y(vy));
+        else ctx.lineTo(X(vx), Y(vy));
       }
       if (b.shape === "polygon") ctx.closePath();
     }
@@ -126,7 +136,7 @@ constexpr const char* kAnimationScript = R"JS(
     ctx.clearRect(0, 0, cssW, cssH);
     ctx.lineJoin = "round";
     for (const b of data.bodies) {
-      const [x, y, i] = position(b, t);
+      const [x, y, i, a] = position(b, t);
       if (b.color !== null) {  // the trail so far
         ctx.globalAlpha = 0.5;
         ctx.lineWidth = 1;
@@ -137,7 +147,7 @@ constexpr const char* kAnimationScript = R"JS(
         ctx.lineTo(X(x), Y(y));
         ctx.stroke();
       }
-      shapePath(b, x, y);
+      shapePath(b, x, y, a);
       ctx.lineWidth = b.shape === "segment" ? 2.5 : 1.2;
       if (b.shape !== "segment") {
         ctx.globalAlpha = b.color === null ? 1 : 0.35;

@@ -64,9 +64,13 @@ inline constexpr double kGoldenAngleDegrees = 137.50776405003785;
 
 // --- Sampling (render_sample.cpp) -------------------------------------------------------------
 
+// A body's place at t: its reference point (the scene's `position`), or for a rotating body its
+// pivot (centroid or midpoint, which moves on the engine's path) and its angle, unwrapped (it
+// grows by 2 pi a turn), so that both interpolate exactly between samples where no force acts.
 struct Sample {
   double t = 0;
   Vec2d p;
+  double angle = 0;
 };
 
 struct Mark {
@@ -101,6 +105,11 @@ struct Run {
   std::uint64_t collisions = 0;
   StormInfo<double> storm;
   std::vector<std::vector<Sample>> paths;  // per body; a fixed body's is its position alone
+  // Per body: for a rotating body its vertices about the pivot (World::pivot_vertices; a
+  // segment's two ends), drawn turned by each sample's angle about its p; empty for the others,
+  // drawn from the scene's shape at their reference point. A fixed spinning body has two
+  // samples (start and end: it turns at a constant rate about a fixed pivot).
+  std::vector<std::vector<Vec2d>> turning;
   std::vector<Mark> marks;                 // thinned
   std::uint64_t marks_seen = 0;
   Box extent;  // of every shape at every sample, and every contact point
@@ -120,6 +129,9 @@ Run simulate(const LoadedScene& loaded, const WorldOptions& options);
 
 // `v` with `decimals` digits after the point, trailing zeros dropped ("0.5", "12", never "-0").
 std::string fixed(double v, int decimals);
+
+// Body `i`'s outline at sample `s` in world coordinates (a turning body's; empty otherwise).
+std::vector<Vec2d> turned_outline(const Run& run, std::size_t i, const Sample& s);
 
 // The picture's frame: world coordinates minus `origin`, the extent's (widened) corner, so that
 // the extent is [0, width] x [0, height]; y up (the SVG flips it with a transform).

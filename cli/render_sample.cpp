@@ -5,6 +5,7 @@
 #include "pge/step_loop.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace pge::cli::render {
 namespace {
@@ -73,6 +74,12 @@ Box shape_box(const BodyDesc& b) {
   return box;
 }
 
+// v turned by `angle` (counter-clockwise, radians).
+Vec2d turn(double angle, Vec2d v) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
 }  // namespace
 
 Run simulate(const LoadedScene& loaded, const WorldOptions& options) {
@@ -90,14 +97,34 @@ Run simulate(const LoadedScene& loaded, const WorldOptions& options) {
   std::vector<Box> local(n);
   for (BodyIndex i = 0; i < n; ++i) local[i] = shape_box(scene.bodies[i]);
   std::vector<Thinned<Sample>> paths(n, Thinned<Sample>(cap));
+  run.turning.resize(n);
+  for (BodyIndex i = 0; i < n; ++i) {
+    if (!world.rotates(i)) continue;
+    run.turning[i] = world.pivot_vertices(i);
+    // Whatever its angle, a turning body lies within its reach of the pivot.
+    double reach = 0;
+    for (const Vec2d& v : run.turning[i]) reach = std::max(reach, std::sqrt(dot(v, v)));
+    local[i] = Box{};
+    local[i].add({-reach, -reach});
+    local[i].add({reach, reach});
+  }
+  auto place = [&](BodyIndex i) {
+    const BodySnapshot<double> s = world.snapshot(i);
+    if (run.turning[i].empty()) return Sample{world.time(), s.position, 0};
+    return Sample{world.time(), s.position + turn(s.angle, world.pivot(i)), s.angle};
+  };
   auto sample = [&](BodyIndex i) {
     if (world.is_fixed(i)) return;
-    const Vec2d p = world.snapshot(i).position;
-    paths[i].add({world.time(), p});
-    run.extent.add(local[i], p);
+    const Sample here = place(i);
+    paths[i].add(here);
+    run.extent.add(local[i], here.p);
   };
+  std::vector<Sample> fixed_start(n);
   for (BodyIndex i = 0; i < n; ++i) {
-    if (world.is_fixed(i)) run.extent.add(local[i], scene.bodies[i].position);
+    if (world.is_fixed(i)) {
+      fixed_start[i] = place(i);
+      run.extent.add(local[i], run.turning[i].empty() ? scene.bodies[i].position : fixed_start[i].p);
+    }
     sample(i);
   }
 
@@ -125,11 +152,23 @@ Run simulate(const LoadedScene& loaded, const WorldOptions& options) {
   run.collisions = world.counts().collisions;
   run.storm = world.storm();
   run.paths.resize(n);
-  for (BodyIndex i = 0; i < n; ++i)
-    run.paths[i] = world.is_fixed(i) ? std::vector<Sample>{{0, scene.bodies[i].position}} : paths[i].finish();
+  for (BodyIndex i = 0; i < n; ++i) {
+    if (!world.is_fixed(i))
+      run.paths[i] = paths[i].finish();
+    else if (run.turning[i].empty())
+      run.paths[i] = {{0, scene.bodies[i].position}};
+    else
+      run.paths[i] = {fixed_start[i], place(i)};
+  }
   run.marks = marks.finish();
   run.marks_seen = marks.seen();
   return run;
+}
+
+std::vector<Vec2d> turned_outline(const Run& run, std::size_t i, const Sample& s) {
+  std::vector<Vec2d> out;
+  for (const Vec2d& v : run.turning[i]) out.push_back(s.p + turn(s.angle, v));
+  return out;
 }
 
 }  // namespace pge::cli::render

@@ -25,13 +25,23 @@ std::string moving_color(std::size_t k) {
   return fmt::format("hsl({:.0f},70%,42%)", std::fmod(static_cast<double>(k) * kGoldenAngleDegrees, 360.0));
 }
 
-// The element for body `b`'s shape with its reference point at `p`; `attributes` go inside the
-// tag and `inner` (a <title>) inside the element.
+// The element for body `b`'s shape with its reference point at `p` (a turning body: its outline
+// `turned`, in world coordinates); `attributes` go inside the tag and `inner` (a <title>) inside
+// the element.
 std::string shape_element(const BodyDesc& b, Vec2d p, const View& v, std::string_view attributes,
-                          std::string_view inner) {
+                          std::string_view inner, const std::vector<Vec2d>& turned = {}) {
   std::string head;
   std::string_view tag;
-  switch (b.shape) {
+  if (!turned.empty() && b.shape == ShapeKind::Segment) {
+    tag = "line";
+    head = fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"", v.x(turned[0].x), v.y(turned[0].y),
+                       v.x(turned[1].x), v.y(turned[1].y));
+  } else if (!turned.empty()) {
+    tag = "polygon";
+    head = "<polygon points=\"";
+    for (std::size_t k = 0; k < turned.size(); ++k) head += (k ? " " : "") + v.point(turned[k]);
+    head += '"';
+  } else switch (b.shape) {
     case ShapeKind::Circle:
       tag = "circle";
       head = fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"{}\"", v.x(p.x), v.y(p.y), v.len(b.radius));
@@ -281,7 +291,8 @@ std::string svg_picture(const Run& run, const View& v, int width_px) {
     const std::string attributes = b.shape == ShapeKind::Segment
                                        ? fmt::format("class=\"body fixed\" stroke-width=\"{}\"", v.len(kSegmentStrokePx * unit))
                                        : std::string("class=\"body fixed\"");
-    out += shape_element(b, b.position, v, attributes, fmt::format("<title>{} (fixed)</title>", xml_escaped(b.id)));
+    out += shape_element(b, b.position, v, attributes, fmt::format("<title>{} (fixed)</title>", xml_escaped(b.id)),
+                         turned_outline(run, i, run.paths[i].front()));
   }
   out += "</g>\n";
 
@@ -304,7 +315,8 @@ std::string svg_picture(const Run& run, const View& v, int width_px) {
     out += shape_element(b, b.position, v,
                          fmt::format("class=\"body\" fill=\"{0}\" stroke=\"{0}\" stroke-width=\"{1}\"", colors[i],
                                      v.len(width * unit)),
-                         fmt::format("<title>{} at the start</title>", xml_escaped(b.id)));
+                         fmt::format("<title>{} at the start</title>", xml_escaped(b.id)),
+                         run.paths[i].empty() ? std::vector<Vec2d>{} : turned_outline(run, i, run.paths[i].front()));
   }
   out += "</g>\n";
 
@@ -315,7 +327,8 @@ std::string svg_picture(const Run& run, const View& v, int width_px) {
     if (b.fixed || run.paths[i].empty()) continue;
     const Sample& last = run.paths[i].back();
     out += shape_element(b, last.p, v, fmt::format("class=\"final\" stroke=\"{}\"", colors[i]),
-                         fmt::format("<title>{} at t = {:.9g} s</title>", xml_escaped(b.id), last.t));
+                         fmt::format("<title>{} at t = {:.9g} s</title>", xml_escaped(b.id), last.t),
+                         turned_outline(run, i, last));
   }
   out += "</g>\n";
 
