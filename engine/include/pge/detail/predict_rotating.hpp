@@ -56,7 +56,7 @@ template <class B> struct RotatingContact {
   std::size_t point = 0, edge = 0;  // the vertex index (VertexEdge); the edge index (k: vertex k to k + 1) or vertex
   std::uint64_t boxes = 0;       // work: boxes enclosed over every search
   // correctly_rounded asked, and the rounding of this root to B could not be decided in the
-  // certifying type (CorrectRounding): t is then the robust placement.
+  // certifying type (round_correctly): t is then the robust placement.
   bool rounding_undecided = false;
 };
 
