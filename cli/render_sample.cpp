@@ -74,12 +74,6 @@ Box shape_box(const BodyDesc& b) {
   return box;
 }
 
-// v turned by `angle` (counter-clockwise, radians).
-Vec2d turn(double angle, Vec2d v) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
-
 }  // namespace
 
 Run simulate(const LoadedScene& loaded, const WorldOptions& options) {
@@ -111,7 +105,7 @@ Run simulate(const LoadedScene& loaded, const WorldOptions& options) {
   auto place = [&](BodyIndex i) {
     const BodySnapshot<double> s = world.snapshot(i);
     if (run.turning[i].empty()) return Sample{world.time(), s.position, 0};
-    return Sample{world.time(), s.position + turn(s.angle, world.pivot(i)), s.angle};
+    return Sample{world.time(), s.position + rotated(s.angle, world.pivot(i)), s.angle};
   };
   auto sample = [&](BodyIndex i) {
     if (world.is_fixed(i)) return;
@@ -167,7 +161,7 @@ Run simulate(const LoadedScene& loaded, const WorldOptions& options) {
 
 std::vector<Vec2d> turned_outline(const Run& run, std::size_t i, const Sample& s) {
   std::vector<Vec2d> out;
-  for (const Vec2d& v : run.turning[i]) out.push_back(s.p + turn(s.angle, v));
+  for (const Vec2d& v : run.turning[i]) out.push_back(s.p + rotated(s.angle, v));
   return out;
 }
 

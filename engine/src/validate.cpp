@@ -154,8 +154,7 @@ struct WorldOutline {
     const Vec2d r = body.shape == ShapeKind::Segment ? (k == 0 ? body.a : body.b) : body.vertices[k];
     if (body.angle == 0) return body.position + r;
     // A turned body (pge-scene/2): its coordinates turn about `position` by `angle`.
-    const double c = std::cos(body.angle), s = std::sin(body.angle);
-    return body.position + Vec2d{c * r.x - s * r.y, s * r.x + c * r.y};
+    return body.position + rotated(body.angle, r);
   }
 };
 

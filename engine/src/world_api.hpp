@@ -27,7 +27,7 @@ template <class T> BodySnapshot<T> World<T>::snapshot(BodyIndex i) const {
   if (!b.rotates) return {k.p, k.v};
   const auto& r = impl_->spin_of(b);
   const T angle = impl_->angle_at(b, impl_->now);
-  return {k.p - detail::rotated(angle, r.pivot), k.v, angle, r.omega};
+  return {k.p - rotated(angle, r.pivot), k.v, angle, r.omega};
 }
 
 template <class T> BodyMotion<T> World<T>::motion(BodyIndex i) const {

@@ -48,7 +48,7 @@ template <class T> inline auto World<T>::Impl::contact_span(const Body& m, Suppo
   std::vector<Vec2<T>> turned;
   if (m.rotates) {
     const T angle = angle_at(m, now);
-    for (const Vec2<T>& v : spin_of(m).vertices) turned.push_back(detail::rotated(angle, v));
+    for (const Vec2<T>& v : spin_of(m).vertices) turned.push_back(rotated(angle, v));
   }
   const std::vector<Vec2<T>>& points = m.rotates ? turned : m.shape.local;
   T low = std::numeric_limits<T>::infinity();

@@ -42,7 +42,7 @@ template <class T> inline auto World<T>::Impl::setup_spin(std::size_t i, Body& b
   }
   b.shape.reach = reach;
   // The path is the pivot's: the scene's position is the reference point at the scene's angle.
-  b.p0 = b.p0 + detail::rotated(r.theta0, r.pivot);
+  b.p0 = b.p0 + rotated(r.theta0, r.pivot);
 }
 
 template <class T> inline auto World<T>::Impl::rotating_shape(const Body& b) const -> detail::RotatingShape<T> {
@@ -233,7 +233,7 @@ template <class T> inline auto World<T>::Impl::collide_rotating(const Scheduled<
 
 template <class T> inline auto World<T>::Impl::world_vertex(const Body& b, std::size_t k, const T& t) const -> Vec2<T> {
   const Vec2<T> p = kinematics(b, t).p;
-  if (b.rotates) return p + detail::rotated(angle_at(b, t), spin_of(b).vertices[k]);
+  if (b.rotates) return p + rotated(angle_at(b, t), spin_of(b).vertices[k]);
   return b.shape.vertex(p, k);
 }
 

@@ -1,6 +1,8 @@
 // A 2D vector over any scalar type.
 #pragma once
 
+#include <cmath>
+
 namespace pge {
 
 template <class T> struct Vec2 {
@@ -24,6 +26,15 @@ template <class T> T cross(const Vec2<T>& a, const Vec2<T>& b) { return a.x * b.
 // The left-hand perpendicular: for a counter-clockwise edge it points outward on the right, so
 // callers orient it explicitly.
 template <class T> Vec2<T> perp(const Vec2<T>& a) { return {-a.y, a.x}; }
+
+// v turned counter-clockwise by `angle` radians: a turning body's vertex about its pivot, the
+// engine's, the checks' and the pictures' alike.
+template <class T> Vec2<T> rotated(const T& angle, const Vec2<T>& v) {
+  using std::cos;
+  using std::sin;
+  const T c = cos(angle), s = sin(angle);
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
 
 template <class U, class T> Vec2<U> vec_cast(const Vec2<T>& v) {
   return {static_cast<U>(v.x), static_cast<U>(v.y)};

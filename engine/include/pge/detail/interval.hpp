@@ -190,6 +190,7 @@ template <class B> class Interval {
   B magnitude() const { return std::max(abs(lo_), abs(hi_)); }
   bool positive() const { return lo_ > B(0); }  // certainly > 0
   bool negative() const { return hi_ < B(0); }  // certainly < 0
+  int sign() const { return positive() ? 1 : negative() ? -1 : 0; }  // certain sign; 0 if it may be 0
   bool contains(const B& x) const { return lo_ <= x && x <= hi_; }
   bool contains_zero() const { return contains(B(0)); }
 

@@ -393,10 +393,7 @@ template <class B> class RotatingPairPredictor {
   }
   template <class W> std::optional<B> round_correctly_in(const Which& which, const B& t) const {
     const WaveSum<W> f = wide_function<W>(which);
-    const auto sign = [&](const W& x) {
-      const Interval<W> v = f(Interval<W>(x));
-      return v.positive() ? 1 : v.negative() ? -1 : 0;
-    };
+    const auto sign = [&](const W& x) { return f(Interval<W>(x)).sign(); };
     constexpr int kSteps = 4;
     B hi = t;
     int s_hi = sign(W(hi));
@@ -501,13 +498,6 @@ template <class B> struct RotatingGeometry {
   Vec2<B> arm_a, arm_b;  // point - centre of a, of b
   bool face_on_face = false;
 };
-
-template <class B> Vec2<B> rotated(const B& angle, const Vec2<B>& r) {
-  using std::cos;
-  using std::sin;
-  const B c = cos(angle), s = sin(angle);
-  return {c * r.x - s * r.y, s * r.x + c * r.y};
-}
 
 template <class B> Vec2<B> centre_at(const StoredPath<B>& p, const B& t) {
   const B s = t - p.t0;

@@ -425,7 +425,7 @@ template <class B> class WaveRootFinder {
   };
   Probe probe(const B& x) const {
     const Interval<B> v = at(f_, x);
-    return {v.positive() ? 1 : v.negative() ? -1 : 0, v.mid()};
+    return {v.sign(), v.mid()};
   }
   using Wide = typename Wider<B>::type;
   static constexpr bool has_wider = !std::is_void_v<Wide> && !std::is_same_v<B, Quad>;
@@ -434,7 +434,7 @@ template <class B> class WaveRootFinder {
     if constexpr (has_wider) {
       if (!wide_) wide_ = widen<Wide>(f_);
       const Interval<Wide> v = (*wide_)(Interval<Wide>(Wide(x)));
-      return {v.positive() ? 1 : v.negative() ? -1 : 0, B(v.mid())};
+      return {v.sign(), B(v.mid())};
     } else {
       return probe(x);
     }
