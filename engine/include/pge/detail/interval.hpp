@@ -13,9 +13,14 @@
 //
 // sin and cos. x is reduced to r = x - k pi/2 with |r| <~ pi/4, pi/2 split in three parts so that
 // k P1 and k P2 are exact for |k| < 2^(p - p/2 - 1) (Cody and Waite, "Software Manual for the
-// Elementary Functions", 1980, ch. 8) and the last part an enclosure; then Taylor polynomials in
-// r^2 with enclosures of the reciprocal factorials and the Lagrange remainder
-// |r|^(n+1) / (n+1)! added as an interval. Over a wide interval the range is the hull of the two
+// Elementary Functions", 1980, ch. 8) and the last part an enclosure; then r = a + d with a the
+// nearest multiple of 1/32 (d = r - a exact, |d| <= 1/64), sin r = sin a cos d + cos a sin d and
+// cos r = cos a cos d - sin a sin d from tabulated enclosures of sin a and cos a (computed in 332
+// bits) and Taylor polynomials in d^2 with enclosures of the reciprocal factorials and the
+// Lagrange remainder |d|^(n+1) / (n+1)! added as an interval: four and four terms in double
+// where |r| <= 0.8 would need eleven and eleven (the table is Tang's idea for exp and log:
+// "Table-driven implementation of the exponential function in IEEE floating-point arithmetic",
+// ACM TOMS 15, 1989). Over a wide interval the range is the hull of the two
 // end values and of +-1 at every extremum k pi/2 it may contain (decided from the reductions of
 // the ends, conservatively: a doubtful extremum is included).
 #pragma once
@@ -88,24 +93,35 @@ template <class B> B interval_next_down(const B& x) { return -interval_next_up<B
 // 4.2.2; the error of a product or quotient from one fused multiply-add, exact when no bound is
 // near underflow). An exact result is not widened, so intervals stay as tight as with the FPU in
 // directed modes. Past underflow or overflow the bounds widen by one ulp each way instead.
+// The arithmetic below is the inner loop of every rotating search: always inlined (GCC at -O2
+// otherwise calls each bound's rounding and each interval operation out of line).
+#if defined(__GNUC__)
+#define PGE_INTERVAL_INLINE [[gnu::always_inline]] inline
+#else
+#define PGE_INTERVAL_INLINE inline
+#endif
+
 template <class B> struct Rounding {
   static constexpr bool builtin = std::is_floating_point_v<B>;
   // Below this the error terms may underflow; past max() / 2 the sums may overflow.
   static B tiny() { return std::numeric_limits<B>::min() / std::numeric_limits<B>::epsilon() * B(8); }
-  static bool ordinary(const B& r) {
+  PGE_INTERVAL_INLINE static bool ordinary(const B& r) {
     const B m = r < B(0) ? B(-r) : r;
     return m > tiny() && m < std::numeric_limits<B>::max() / B(4);
   }
   // sign(a + b - r)
-  static int sum_error_sign(const B& a, const B& b, const B& r) {
+  PGE_INTERVAL_INLINE static int sum_error_sign(const B& a, const B& b, const B& r) {
     const B bb = r - a;
     const B e = (a - (r - bb)) + (b - bb);
     return (e > B(0)) - (e < B(0));
   }
   // sign(x y - r): Dekker's exact product (Dekker, "A floating-point technique for extending the
   // available precision", Numer. Math. 18, 1971) for the built-in types, a wide product for Quad.
-  static int product_error_sign(const B& x, const B& y, const B& r) {
-    if constexpr (builtin) {
+  PGE_INTERVAL_INLINE static int product_error_sign(const B& x, const B& y, const B& r) {
+    if constexpr (std::is_same_v<B, double>) {
+      const B e = std::fma(x, y, -r);
+      return (e > B(0)) - (e < B(0));
+    } else if constexpr (builtin) {
       constexpr int half = (std::numeric_limits<B>::digits + 1) / 2;
       const B split = B(std::uint64_t{1} << half) + B(1);
       auto parts = [&](const B& a, B& hi, B& lo) {
@@ -128,31 +144,31 @@ template <class B> struct Rounding {
     }
   }
   // Whether Dekker's splitting of x and y cannot overflow.
-  static bool splittable(const B& x, const B& y) {
+  PGE_INTERVAL_INLINE static bool splittable(const B& x, const B& y) {
     const B limit = std::numeric_limits<B>::max() * std::numeric_limits<B>::epsilon() / B(8);
     return (x < B(0) ? B(-x) : x) < limit && (y < B(0) ? B(-y) : y) < limit;
   }
   // sign(a / d - r) for d > 0: the sign of a - r d
   static int quotient_error_sign(const B& a, const B& d, const B& r) { return -product_error_sign(r, d, a); }
 
-  static B down(const B& r, int error_sign) {
+  PGE_INTERVAL_INLINE static B down(const B& r, int error_sign) {
     if (r == B(0) && error_sign == 0) return r;
     if (!ordinary(r)) return interval_next_down(r);
     return error_sign < 0 ? interval_next_down(r) : r;
   }
-  static B up(const B& r, int error_sign) {
+  PGE_INTERVAL_INLINE static B up(const B& r, int error_sign) {
     if (r == B(0) && error_sign == 0) return r;
     if (!ordinary(r)) return interval_next_up(r);
     return error_sign > 0 ? interval_next_up(r) : r;
   }
-  static B add_down(const B& a, const B& b) { const B r = a + b; return down(r, sum_error_sign(a, b, r)); }
-  static B add_up(const B& a, const B& b) { const B r = a + b; return up(r, sum_error_sign(a, b, r)); }
-  static B mul_down(const B& x, const B& y) {
+  PGE_INTERVAL_INLINE static B add_down(const B& a, const B& b) { const B r = a + b; return down(r, sum_error_sign(a, b, r)); }
+  PGE_INTERVAL_INLINE static B add_up(const B& a, const B& b) { const B r = a + b; return up(r, sum_error_sign(a, b, r)); }
+  PGE_INTERVAL_INLINE static B mul_down(const B& x, const B& y) {
     if (x == B(0) || y == B(0)) return B(0);
     const B r = x * y;
     return down(r, ordinary(r) && splittable(x, y) ? product_error_sign(x, y, r) : -1);
   }
-  static B mul_up(const B& x, const B& y) {
+  PGE_INTERVAL_INLINE static B mul_up(const B& x, const B& y) {
     if (x == B(0) || y == B(0)) return B(0);
     const B r = x * y;
     return up(r, ordinary(r) && splittable(x, y) ? product_error_sign(x, y, r) : 1);
@@ -194,14 +210,14 @@ template <class B> class Interval {
   bool contains(const B& x) const { return lo_ <= x && x <= hi_; }
   bool contains_zero() const { return contains(B(0)); }
 
-  friend Interval operator-(const Interval& a) { return raw(-a.hi_, -a.lo_); }
-  friend Interval operator+(const Interval& a, const Interval& b) {
+  PGE_INTERVAL_INLINE friend Interval operator-(const Interval& a) { return raw(-a.hi_, -a.lo_); }
+  PGE_INTERVAL_INLINE friend Interval operator+(const Interval& a, const Interval& b) {
     return raw(R::add_down(a.lo_, b.lo_), R::add_up(a.hi_, b.hi_));
   }
-  friend Interval operator-(const Interval& a, const Interval& b) {
+  PGE_INTERVAL_INLINE friend Interval operator-(const Interval& a, const Interval& b) {
     return raw(R::add_down(a.lo_, -b.hi_), R::add_up(a.hi_, -b.lo_));
   }
-  friend Interval operator*(const Interval& a, const Interval& b) {
+  PGE_INTERVAL_INLINE friend Interval operator*(const Interval& a, const Interval& b) {
     // By the signs of the factors (nine cases, two products each except when both straddle 0).
     const B &al = a.lo_, &ah = a.hi_, &bl = b.lo_, &bh = b.hi_;
     if (al >= B(0)) {
@@ -221,7 +237,7 @@ template <class B> class Interval {
   }
   // a b + c with each bound widened one ulp outward, without the exact error terms: cheaper, and
   // as tight where the result is added to far larger terms (the tails of the Taylor series).
-  friend Interval loose_mul_add(const Interval& a, const Interval& b, const Interval& c) {
+  PGE_INTERVAL_INLINE friend Interval loose_mul_add(const Interval& a, const Interval& b, const Interval& c) {
     B lo = std::numeric_limits<B>::infinity(), hi = -lo;
     for (const B& x : {a.lo_, a.hi_}) {
       for (const B& y : {b.lo_, b.hi_}) {
@@ -237,7 +253,7 @@ template <class B> class Interval {
   friend Interval operator/(const Interval& a, const B& d) {
     return raw(R::div_down(a.lo_, d), R::div_up(a.hi_, d));
   }
-  Interval square() const {
+  PGE_INTERVAL_INLINE Interval square() const {
     const B a = std::min(abs(lo_), abs(hi_)), b = std::max(abs(lo_), abs(hi_));
     if (lo_ >= B(0) || hi_ <= B(0)) return raw(R::mul_down(a, a), R::mul_up(b, b));
     return raw(B(0), R::mul_up(b, b));
@@ -270,7 +286,7 @@ template <class B> class Interval {
  private:
   using R = Rounding<B>;
   static B abs(const B& x) { return x < B(0) ? B(-x) : x; }
-  static Interval raw(const B& lo, const B& hi) {
+  PGE_INTERVAL_INLINE static Interval raw(const B& lo, const B& hi) {
     Interval r;
     r.lo_ = lo;
     r.hi_ = hi;
@@ -306,6 +322,14 @@ template <class B> class TrigTables {
   // (n + 1 terms kept) bound the rest of these alternating series with decreasing terms.
   B reduced_max;
   B sin_remainder, cos_remainder;
+  // The table: sin and cos of j / kSteps for |j| <= table_half (covering |r| <= reduced_max), and
+  // the series for |d| <= step_max (1 / (2 kSteps), rounded up) with their remainders.
+  static constexpr int kSteps = 32;
+  int table_half = 0;
+  std::vector<Interval<B>> table_sin, table_cos;  // index j + table_half
+  B step_max;
+  std::vector<Interval<B>> step_sin_coef, step_cos_coef;
+  B step_sin_remainder, step_cos_remainder;
 
  private:
   using High = boost::multiprecision::cpp_bin_float_100;  // 332 bits: far past Quad's 113
@@ -342,13 +366,13 @@ template <class B> class TrigTables {
     if (High(reduced_max) > r_max) reduced_max = interval_next_down(reduced_max);
     // sin: terms (-1)^n r^(2n+1) / (2n+1)!, cos: (-1)^n r^(2n) / (2n)!; each table stops when the
     // next term's bound at r_max is below tiny, and that bound is the remainder.
-    const auto taylor = [&](int first_power, std::vector<Interval<B>>& coef, B& remainder) {
+    const auto taylor = [&](int first_power, std::vector<Interval<B>>& coef, B& remainder, const High& r_top) {
       High fact = 1;  // (2n + first_power)!
       for (int n = 0;; ++n) {
         coef.push_back(enclose((n % 2 == 0 ? 1 : -1) / fact));
         const int power = 2 * n + first_power + 2;
         const High next = fact * (power - 1) * power;
-        const High bound = boost::multiprecision::pow(r_max, power) / next;
+        const High bound = boost::multiprecision::pow(r_top, power) / next;
         if (bound < tiny) {
           remainder = interval_next_up(static_cast<B>(bound));
           return;
@@ -356,8 +380,20 @@ template <class B> class TrigTables {
         fact = next;
       }
     };
-    taylor(1, sin_coef, sin_remainder);
-    taylor(0, cos_coef, cos_remainder);
+    taylor(1, sin_coef, sin_remainder, r_max);
+    taylor(0, cos_coef, cos_remainder, r_max);
+
+    const High d_max = High(1) / (2 * kSteps) * (1 + boost::multiprecision::ldexp(High(1), -20));
+    step_max = static_cast<B>(d_max);
+    if (High(step_max) > d_max) step_max = interval_next_down(step_max);
+    taylor(1, step_sin_coef, step_sin_remainder, d_max);
+    taylor(0, step_cos_coef, step_cos_remainder, d_max);
+    table_half = static_cast<int>(boost::multiprecision::ceil(r_max * kSteps)) + 1;
+    for (int j = -table_half; j <= table_half; ++j) {
+      const High a = High(j) / kSteps;
+      table_sin.push_back(enclose(boost::multiprecision::sin(a)));
+      table_cos.push_back(enclose(boost::multiprecision::cos(a)));
+    }
   }
 };
 
@@ -392,10 +428,39 @@ template <class B> Reduced<B> reduce_half_pi(const B& x) {
   return out;
 }
 
-// sin and cos of the reduced argument r (|r| <= ~0.8), each with its remainder.
+// sin and cos of the reduced argument r (|r| <= ~0.8), each with its remainder: by the table
+// where r is narrow (a reduced point), by the series over all of |r| <= 0.8 otherwise.
 template <class B> SinCos<B> sin_cos_reduced(const Interval<B>& r) {
   const TrigTables<B>& tab = TrigTables<B>::get();
   if (!(r.magnitude() <= tab.reduced_max)) return {Interval<B>(B(-1), B(1)), Interval<B>(B(-1), B(1))};
+  {
+    using std::nearbyint;
+    using boost::multiprecision::round;
+    const B scaled = r.mid() * B(TrigTables<B>::kSteps);
+    const B jb = [&] {
+      if constexpr (std::is_floating_point_v<B>) return nearbyint(scaled);
+      else return B(round(scaled));
+    }();
+    const int j = static_cast<int>(jb);
+    // a = j / kSteps exactly (a power of two); d = r - a, enclosed whether or not it is exact.
+    const Interval<B> d = r - Interval<B>(jb / B(TrigTables<B>::kSteps));
+    if (j >= -tab.table_half && j <= tab.table_half && d.magnitude() <= tab.step_max) {
+      const Interval<B> d2 = d.square();
+      // The series' terms past the second are scaled by d^2 <= 2^-12 twice: one-ulp widening.
+      Interval<B> s = tab.step_sin_coef.back();
+      for (std::size_t i = tab.step_sin_coef.size() - 1; i-- > 1;) s = loose_mul_add(s, d2, tab.step_sin_coef[i]);
+      s = s * d2 + tab.step_sin_coef[0];
+      Interval<B> c = tab.step_cos_coef.back();
+      for (std::size_t i = tab.step_cos_coef.size() - 1; i-- > 1;) c = loose_mul_add(c, d2, tab.step_cos_coef[i]);
+      c = c * d2 + tab.step_cos_coef[0];
+      const B es = tab.step_sin_remainder, ec = tab.step_cos_remainder;
+      const Interval<B> sd = d * s + Interval<B>(-es, es), cd = c + Interval<B>(-ec, ec);
+      const auto k = static_cast<std::size_t>(j + tab.table_half);
+      const Interval<B>& sa = tab.table_sin[k];
+      const Interval<B>& ca = tab.table_cos[k];
+      return {sa * cd + ca * sd, ca * cd - sa * sd};
+    }
+  }
   const Interval<B> r2 = r.square();
   // Horner in r^2; the terms past the second are scaled by r^2 <= 0.64 at least twice, so they
   // take the cheaper one-ulp widening (loose_mul_add: rigorous too, as a rounding to nearest is

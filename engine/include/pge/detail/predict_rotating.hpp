@@ -17,7 +17,12 @@
 //
 // Work. The bounding circles first: the search starts where their distance can first be zero
 // (the earliest root of |d|^2 - (reach_a + reach_b)^2, a polynomial, no waves), and a pair whose
-// bounding circles never meet in the window costs one search of a quadratic. Each feature's
+// bounding circles never meet in the window costs one search of a quadratic. Then conservative
+// advancement while the shapes are proven far apart (advance). Of two outlines, a feature is
+// searched only from the time its point can first reach its edge (its distance from the edge's
+// line over the fastest closing speed), and, once the shapes are proven apart, only where its
+// vertex may be its outline's support point towards the edge (supporting(): about a third of the
+// pairs of two polygons over a window in which they turn little). Each feature's
 // search is bounded by `max_boxes`; past it the pair's result is Undecided at the earliest time
 // up to which no feature is known to touch, and the caller predicts again from there (progress
 // every call; a body spinning many turns between contacts costs about a constant per turn, see
@@ -64,6 +69,9 @@ struct RotatingOptions {
   std::uint64_t max_boxes = 100000;  // per feature search
   bool bounding_circles = true;      // start where the bounding circles can first touch
   bool advance = true;               // then advance conservatively while the shapes are far apart
+  // Of two outlines, search a feature only from when its point can reach its edge and, while the
+  // shapes are proven apart, only where its vertex may be the support point (outline_pair).
+  bool prune_features = true;
   // The certified solver's promise: a crossing's time is the nearest value of B to the exact
   // contact time of the stored paths (round_correctly), or marked rounding_undecided.
   bool correctly_rounded = false;
@@ -113,6 +121,7 @@ template <class B> class RotatingPairPredictor {
     if (!(from < hi)) return best_;
     // The start rule belongs to lo (now); from a later start the shapes cannot overlap there.
     rule_now_ = from == lo ? rule_ : StartRule::CrossingsOnly;
+    from_ = from;
     if (!a_.circle() && !b_.circle()) {
       outline_pair(pa, pb, from);
     } else if (a_.circle() != b_.circle()) {
@@ -145,8 +154,10 @@ template <class B> class RotatingPairPredictor {
     if (!(vmax > B(0)) || !(vmax < std::numeric_limits<B>::infinity())) return t;
     vmax_ = vmax;
     const B close = (a_.reach + b_.reach) / B(1024);
+    close_ = close;
     for (int step = 0; step < kAdvanceSteps; ++step) {
       const B dist = distance_lower_bound(t);
+      apart_at_ = dist > B(0) ? t : std::numeric_limits<B>::quiet_NaN();
       if (!(dist > close)) return t;
       const B next = (I(t) + I(dist) / vmax).lo();
       if (!(next > t)) return t;
@@ -156,87 +167,187 @@ template <class B> class RotatingPairPredictor {
     return t;
   }
   static constexpr int kAdvanceSteps = 64;
+  // A search's end when only the best contact so far bounds it.
+  static B no_end() { return std::numeric_limits<B>::infinity(); }
 
-  // A body's points at t (its path taken at t), as enclosures.
-  static std::vector<Vec2<Interval<B>>> points_at(const RotatingShape<B>& s, const PathAt<B>& p) {
+  // A body's points at t (its path taken at t), as enclosures, into `out`.
+  static void points_at(const RotatingShape<B>& s, const PathAt<B>& p, std::vector<Vec2<Interval<B>>>& out) {
     const SinCos<B> sc = sin_cos(p.phase);
-    std::vector<Vec2<Interval<B>>> out;
-    out.reserve(s.vertices.size());
+    out.clear();
     for (const Vec2<B>& v : s.vertices) {
       const Vec2<Interval<B>> r = enclose(v);
       out.push_back({p.c[0].x + sc.cos * r.x - sc.sin * r.y, p.c[0].y + sc.sin * r.x + sc.cos * r.y});
     }
-    return out;
   }
 
-  // The largest separation along the edge normals of `edges`' outline of the points `other`
-  // (minus `rho` for a circle's centre), as a lower bound on their distance.
-  static B separation(const std::vector<Vec2<Interval<B>>>& edges, const std::vector<Vec2<Interval<B>>>& other,
-                      const B& rho) {
+  // The separation along the normal of edge k of `edges`' outline of the points `other` (minus
+  // `rho` for a circle's centre): a lower bound on their distance.
+  static B separation_along(const std::vector<Vec2<Interval<B>>>& edges, std::size_t k,
+                            const std::vector<Vec2<Interval<B>>>& other, const B& rho) {
     using I = Interval<B>;
-    B best = -std::numeric_limits<B>::infinity();
     const std::size_t n = edges.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const Vec2<I> e = edges[(k + 1) % n] - edges[k];
-      const Vec2<I> out{e.y, -e.x};
-      B least = std::numeric_limits<B>::infinity();
-      for (const Vec2<I>& q : other) least = std::min(least, dot(out, q - edges[k]).lo());
-      const I length = (out.x.square() + out.y.square()).sqrt();
-      const B gap = least > B(0) ? (I(least) / length.hi()).lo() - rho : (least < B(0) ? least : B(0)) - rho;
-      best = std::max(best, gap);
+    const Vec2<I> e = edges[(k + 1) % n] - edges[k];
+    const Vec2<I> out{e.y, -e.x};
+    B least = std::numeric_limits<B>::infinity();
+    for (const Vec2<I>& q : other) least = std::min(least, dot(out, q - edges[k]).lo());
+    const I length = (out.x.square() + out.y.square()).sqrt();
+    return least > B(0) ? (I(least) / length.hi()).lo() - rho : (least < B(0) ? least : B(0)) - rho;
+  }
+
+  // The largest of those over every edge of `edges`, and (in `axis`) the edge giving it.
+  static B separation(const std::vector<Vec2<Interval<B>>>& edges, const std::vector<Vec2<Interval<B>>>& other,
+                      const B& rho, std::size_t& axis) {
+    B best = -std::numeric_limits<B>::infinity();
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      const B gap = separation_along(edges, k, other, rho);
+      if (gap > best) {
+        best = gap;
+        axis = k;
+      }
     }
     return best;
   }
 
+  // A lower bound on the shapes' distance at t: the largest separation along any edge normal of
+  // either. Conservative advancement asks it at times close together, where the axis that
+  // separated best the last time usually still does: that axis alone is taken while it proves
+  // at least half the last distance (and more than the advancement's threshold); otherwise
+  // every axis again.
   B distance_lower_bound(const B& t) const {
     const PathAt<B> pa = path_at(a_.path, t), pb = path_at(b_.path, t);
     if (a_.circle() || b_.circle()) {
       const bool a_round = a_.circle();
       const PathAt<B>& pc = a_round ? pa : pb;
-      const std::vector<Vec2<Interval<B>>> centre{pc.c[0]};
-      return separation(points_at(a_round ? b_ : a_, a_round ? pb : pa), centre, a_round ? a_.radius : b_.radius);
+      centre_.assign(1, pc.c[0]);
+      points_at(a_round ? b_ : a_, a_round ? pb : pa, points_a_);
+      std::size_t axis = 0;
+      return separation(points_a_, centre_, a_round ? a_.radius : b_.radius, axis);
     }
-    const std::vector<Vec2<Interval<B>>> va = points_at(a_, pa), vb = points_at(b_, pb);
-    return std::max(separation(va, vb, B(0)), separation(vb, va, B(0)));
+    points_at(a_, pa, points_a_);
+    points_at(b_, pb, points_b_);
+    if (axis_known_) {
+      const B gap = axis_on_a_ ? separation_along(points_a_, axis_, points_b_, B(0))
+                               : separation_along(points_b_, axis_, points_a_, B(0));
+      if (gap > last_distance_ / B(2) && gap > close_) {
+        last_distance_ = gap;
+        return gap;
+      }
+    }
+    std::size_t on_a = 0, on_b = 0;
+    const B sa = separation(points_a_, points_b_, B(0), on_a), sb = separation(points_b_, points_a_, B(0), on_b);
+    axis_known_ = true;
+    axis_on_a_ = sa >= sb;
+    axis_ = axis_on_a_ ? on_a : on_b;
+    last_distance_ = std::max(sa, sb);
+    return last_distance_;
   }
 
   // Every vertex of either outline against every edge of the other, nearest first: each
-  // feature's distance in front of its edge's line at `from` (its gap over |e|, a lower bound) is
-  // also a bound on when it can first touch, at the fastest closing speed (advance): a feature
-  // that cannot touch before the best contact found so far is not searched at all, and the
-  // nearest ones, searched first, usually give that contact at once. (Ties between two features
-  // at the same time keep the first searched.)
+  // feature's distance from its edge's line at `from` (|gap| over |e|, a lower bound on its
+  // distance from the edge) is also a bound on when it can first touch, at the fastest closing
+  // speed (advance): its search starts there, a feature that cannot touch before the best
+  // contact found so far is not searched at all, and the nearest ones, searched first, usually
+  // give that contact at once. (Ties between two features at the same time keep the first
+  // searched.) From a time at which the shapes are proven apart (`from` itself, or a little
+  // after it for a pair that has just touched: apart_after) only the features whose vertex may be
+  // its outline's support point towards the edge are searched (supporting()); every feature
+  // is searched before it.
   void outline_pair(const PathAt<B>& pa, const PathAt<B>& pb, const B& from) {
     struct Job {
       B near;
       FeatureFunctions<B> f;
       bool point_on_a;
       std::size_t i, k;
+      bool all_window;  // searched to the best contact; else only before `apart`
     };
     std::vector<Job> jobs;
     const Interval<B> at(from);
+    const B apart = opt_.prune_features ? apart_after(from) : best_.t;
     for (const bool on_a : {true, false}) {
       const RotatingShape<B>& sp = on_a ? a_ : b_;
       const RotatingShape<B>& sq = on_a ? b_ : a_;
       const PathAt<B>& P = on_a ? pa : pb;
       const PathAt<B>& Q = on_a ? pb : pa;
       const std::size_t nq = sq.vertices.size();
+      // Q's frame turned into P's over [apart, best_.t] (the paths are taken at their origin,
+      // lo): the angle theta_Q - theta_P.
+      const bool prune = apart < best_.t;
+      SinCos<B> turn;
+      if (prune) {
+        const Interval<B> elapsed = hull(Interval<B>(apart) - Interval<B>(P.origin), Interval<B>(best_.t) - Interval<B>(P.origin));
+        turn = sin_cos(Q.phase - P.phase + (Q.omega - P.omega) * elapsed);
+      }
       for (std::size_t i = 0; i < sp.vertices.size(); ++i)
         for (std::size_t k = 0; k < nq; ++k) {
+          const bool all_window = !prune || supporting(sp, i, sq, k, turn);
+          if (!all_window && !(apart > from)) continue;
           FeatureFunctions<B> f = point_edge_functions(P, sp.vertices[i], B(0), Q, sq.vertices[k], sq.vertices[(k + 1) % nq]);
-          const B gap = f.gap(at).lo();
+          const Interval<B> g = f.gap(at);
+          const B gap = g.lo() > B(0) ? g.lo() : g.hi() < B(0) ? -g.hi() : B(0);
           const B near = gap > B(0) ? (Interval<B>(gap) / f.length_sq.sqrt().hi()).lo() : B(0);
-          jobs.push_back({near, std::move(f), on_a, i, k});
+          jobs.push_back({near, std::move(f), on_a, i, k, all_window});
         }
     }
     std::stable_sort(jobs.begin(), jobs.end(), [](const Job& x, const Job& y) { return x.near < y.near; });
     for (const Job& j : jobs) {
-      if (vmax_ > B(0) && j.near > B(0) && (Interval<B>(from) + Interval<B>(j.near) / vmax_).lo() >= best_.t) break;
+      // The feature cannot touch before `start`: its point is at least `near` from the edge.
+      B start = vmax_ > B(0) && j.near > B(0) ? (Interval<B>(from) + Interval<B>(j.near) / vmax_).lo() : from;
+      if (start >= best_.t) break;
+      if (!opt_.prune_features) start = from;
+      const B until = j.all_window ? best_.t : std::min(apart, best_.t);
+      if (start >= until) continue;
       const RotatingShape<B>& sp = j.point_on_a ? a_ : b_;
       const RotatingShape<B>& sq = j.point_on_a ? b_ : a_;
-      search_edge(j.f, j.point_on_a ? pa : pb, sp, sp.vertices[j.i], B(0), j.point_on_a ? pb : pa, sq, from,
-                  {RotatingFeature::VertexEdge, j.point_on_a, j.i, j.k});
+      search_edge(j.f, j.point_on_a ? pa : pb, sp, sp.vertices[j.i], B(0), j.point_on_a ? pb : pa, sq, std::max(start, from),
+                  until, {RotatingFeature::VertexEdge, j.point_on_a, j.i, j.k});
     }
+  }
+
+  // The first of `from` and a few times a little after it at which the shapes are proven apart
+  // (a positive distance_lower_bound), or the window's end: a pair that has just touched is
+  // usually apart after a small fraction of the time its points need to close by their reaches.
+  B apart_after(const B& from) {
+    if (apart_at_ == from || distance_lower_bound(from) > B(0)) return from;
+    if (!(vmax_ > B(0))) return best_.t;
+    const B span = (Interval<B>(a_.reach + b_.reach) / vmax_).lo();
+    for (const int shift : {10, 6, 3}) {
+      const B t = (Interval<B>(from) + Interval<B>(span / B(1 << shift))).hi();
+      if (!(t < best_.t)) break;
+      if (distance_lower_bound(t) > B(0)) return t;
+    }
+    return best_.t;
+  }
+
+  // Whether vertex i of P may be P's support point towards edge k of Q (the farthest of P's
+  // vertices along -n_k, n_k the edge's outward normal) at some angle of Q's frame in P's whose
+  // sine and cosine `turn` encloses. Where the shapes are apart at the window's start, the
+  // first contact in it touches a vertex that is: at that time the shapes' interiors are apart,
+  // so the set S of directions separating them (from Q towards P) is an arc, narrower than a
+  // half turn where either is a polygon, whose ends are edge normals n_k of Q at the touching
+  // vertex (S's end inside Q's normal cone there) or reversed edge normals -m_f of P (likewise);
+  // an end n_k makes the feature (the touching vertex of P, edge k) one where the vertex is the
+  // support point towards k, an end -m_f the feature (the touching vertex of Q, edge f of P). The
+  // relative velocity u of the two touching points closes along some direction of S (they were
+  // apart just before), so the open half turn of directions d with u.d < 0 meets S, and an arc
+  // narrower than a half turn that meets an open half turn has an end inside it: that end's
+  // feature has its vertex in front of its edge's line just before the contact, so its gap falls
+  // through zero there (or touches it: a graze). One supporting feature thus crosses at the
+  // first contact, and every other feature's root, on its edge, is a contact no earlier. The
+  // support test needs only the vertex's neighbours: (v_i - v_j).(-n_k) >= 0 for j = i +- 1.
+  static bool supporting(const RotatingShape<B>& sp, std::size_t i, const RotatingShape<B>& sq, std::size_t k,
+                         const SinCos<B>& turn) {
+    using I = Interval<B>;
+    if (sp.vertices.size() < 3 && sq.vertices.size() < 3) return true;  // two rods: S may be a half turn
+    const std::size_t nq = sq.vertices.size(), np = sp.vertices.size();
+    const Vec2<I> e = enclose(sq.vertices[(k + 1) % nq]) - enclose(sq.vertices[k]);
+    // -n_k in Q's frame is (-e.y, e.x); turned into P's frame.
+    const I dx = -e.y, dy = e.x;
+    const Vec2<I> d{turn.cos * dx - turn.sin * dy, turn.sin * dx + turn.cos * dy};
+    const Vec2<I> v = enclose(sp.vertices[i]);
+    for (const std::size_t j : {(i + 1) % np, (i + np - 1) % np}) {
+      if (dot(v - enclose(sp.vertices[j]), d).hi() < B(0)) return false;
+    }
+    return true;
   }
 
   void circle_outline(const PathAt<B>& P, const RotatingShape<B>& sp, const PathAt<B>& Q, const RotatingShape<B>& sq,
@@ -245,11 +356,11 @@ template <class B> class RotatingPairPredictor {
     for (std::size_t k = 0; k < nq; ++k) {
       const FeatureFunctions<B> f =
           point_edge_functions(P, Vec2<B>{}, sp.radius, Q, sq.vertices[k], sq.vertices[(k + 1) % nq]);
-      search_edge(f, P, sp, Vec2<B>{}, sp.radius, Q, sq, from, {RotatingFeature::CircleEdge, point_on_a, 0, k});
+      search_edge(f, P, sp, Vec2<B>{}, sp.radius, Q, sq, from, no_end(), {RotatingFeature::CircleEdge, point_on_a, 0, k});
     }
     for (std::size_t k = 0; k < nq; ++k) {
       const WaveSum<B> f = circle_vertex_function(P, sp.radius, Q, sq.vertices[k]);
-      search(f, nullptr, P, sp, Vec2<B>{}, sp.radius, Q, sq, from, {RotatingFeature::CircleVertex, point_on_a, 0, k});
+      search(f, nullptr, P, sp, Vec2<B>{}, sp.radius, Q, sq, from, no_end(), {RotatingFeature::CircleVertex, point_on_a, 0, k});
     }
   }
 
@@ -274,19 +385,22 @@ template <class B> class RotatingPairPredictor {
   // the mean of P's vertices, a point inside P. Without it a corner that has just bounced off
   // one side, still on the line and leaving, would strike the other side at once.
   void search(const WaveSum<B>& gap, const FeatureFunctions<B>* f, const PathAt<B>& P, const RotatingShape<B>& sp,
-              const Vec2<B>& r, const B& rho, const PathAt<B>& Q, const RotatingShape<B>& sq, B lo, const Which& which) {
-    StartRule rule = rule_now_;
+              const Vec2<B>& r, const B& rho, const PathAt<B>& Q, const RotatingShape<B>& sq, B lo, const B& until,
+              const Which& which) {
+    StartRule rule = lo == from_ ? rule_now_ : StartRule::CrossingsOnly;
     const bool touching_at_start = gap(Interval<B>(lo)).contains_zero();
-    while (lo < best_.t) {
-      WaveRoot<B> root = f ? earliest_wave_root_on(gap, f->along, f->length_sq, lo, best_.t, rule, opt_.max_boxes)
-                           : earliest_wave_root(gap, lo, best_.t, rule, opt_.max_boxes);
+    for (;;) {
+      const B hi = std::min(until, best_.t);
+      if (!(lo < hi)) return;
+      WaveRoot<B> root = f ? earliest_wave_root_on(gap, f->along, f->length_sq, lo, hi, rule, opt_.max_boxes)
+                           : earliest_wave_root(gap, lo, hi, rule, opt_.max_boxes);
       best_.boxes += root.boxes;
       if (root.status != RootStatus::Root) {
         take(root, which);
         return;
       }
       if (root.tangent && touching_at_start) {
-        const std::optional<B> past = past_tangency(gap, root.t, best_.t);
+        const std::optional<B> past = past_tangency(gap, root.t, hi);
         if (past) {
           rule = StartRule::CrossingsOnly;
           lo = *past;
@@ -308,13 +422,14 @@ template <class B> class RotatingPairPredictor {
         return;
       }
       rule = StartRule::CrossingsOnly;
-      lo = past_crossing(gap, root.t, best_.t);
+      lo = past_crossing(gap, root.t, hi);
     }
   }
 
   void search_edge(const FeatureFunctions<B>& f, const PathAt<B>& P, const RotatingShape<B>& sp, const Vec2<B>& r,
-                   const B& rho, const PathAt<B>& Q, const RotatingShape<B>& sq, const B& lo, const Which& which) {
-    search(f.gap, &f, P, sp, r, rho, Q, sq, lo, which);
+                   const B& rho, const PathAt<B>& Q, const RotatingShape<B>& sq, const B& lo, const B& until,
+                   const Which& which) {
+    search(f.gap, &f, P, sp, r, rho, Q, sq, lo, until, which);
   }
 
   // Whether P's body lies certainly behind edge k of the segment Q at t (its vertices' mean).
@@ -462,12 +577,21 @@ template <class B> class RotatingPairPredictor {
   const RotatingShape<B>& a_;
   const RotatingShape<B>& b_;
   StartRule rule_, rule_now_ = StartRule::CrossingsOnly;
+  B from_{};  // where the feature searches start (rule_now_ holds there)
   RotatingOptions opt_;
   RotatingContact<B> best_;
   B origin_{};
   // The fastest any point of one shape closes on the other over the search's window (advance);
   // 0 when not known (then nothing is pruned).
   B vmax_{};
+  // distance_lower_bound's buffers and its last separating axis (an edge of a or of b).
+  mutable std::vector<Vec2<Interval<B>>> points_a_, points_b_, centre_;
+  mutable bool axis_known_ = false, axis_on_a_ = false;
+  mutable std::size_t axis_ = 0;
+  mutable B last_distance_{};
+  B close_{};  // advance()'s threshold
+  // The last time advance() proved the shapes apart (NaN if none).
+  B apart_at_ = std::numeric_limits<B>::quiet_NaN();
 };
 
 // Where and along which normal two shapes touch at a predicted contact (double geometry at the
