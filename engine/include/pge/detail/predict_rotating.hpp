@@ -21,8 +21,9 @@
 // advancement while the shapes are proven far apart (advance). Of two outlines, a feature is
 // searched only from the time its point can first reach its edge (its distance from the edge's
 // line over the fastest closing speed), and, once the shapes are proven apart, only where its
-// vertex may be its outline's support point towards the edge (supporting(): about a third of the
-// pairs of two polygons over a window in which they turn little). Each feature's
+// vertex may be its outline's support point towards the edge (supporting(): on the 20-polygon
+// spinning gas of docs/rotation.md it leaves out half the features of the pairs proven apart).
+// Each feature's
 // search is bounded by `max_boxes`; past it the pair's result is Undecided at the earliest time
 // up to which no feature is known to touch, and the caller predicts again from there (progress
 // every call; a body spinning many turns between contacts costs about a constant per turn, see
