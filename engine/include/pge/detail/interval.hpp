@@ -93,31 +93,23 @@ template <class B> B interval_next_down(const B& x) { return -interval_next_up<B
 // 4.2.2; the error of a product or quotient from one fused multiply-add, exact when no bound is
 // near underflow). An exact result is not widened, so intervals stay as tight as with the FPU in
 // directed modes. Past underflow or overflow the bounds widen by one ulp each way instead.
-// The arithmetic below is the inner loop of every rotating search: always inlined (GCC at -O2
-// otherwise calls each bound's rounding and each interval operation out of line).
-#if defined(__GNUC__)
-#define PGE_INTERVAL_INLINE [[gnu::always_inline]] inline
-#else
-#define PGE_INTERVAL_INLINE inline
-#endif
-
 template <class B> struct Rounding {
   static constexpr bool builtin = std::is_floating_point_v<B>;
   // Below this the error terms may underflow; past max() / 2 the sums may overflow.
   static B tiny() { return std::numeric_limits<B>::min() / std::numeric_limits<B>::epsilon() * B(8); }
-  PGE_INTERVAL_INLINE static bool ordinary(const B& r) {
+  static bool ordinary(const B& r) {
     const B m = r < B(0) ? B(-r) : r;
     return m > tiny() && m < std::numeric_limits<B>::max() / B(4);
   }
   // sign(a + b - r)
-  PGE_INTERVAL_INLINE static int sum_error_sign(const B& a, const B& b, const B& r) {
+  static int sum_error_sign(const B& a, const B& b, const B& r) {
     const B bb = r - a;
     const B e = (a - (r - bb)) + (b - bb);
     return (e > B(0)) - (e < B(0));
   }
   // sign(x y - r): Dekker's exact product (Dekker, "A floating-point technique for extending the
   // available precision", Numer. Math. 18, 1971) for the built-in types, a wide product for Quad.
-  PGE_INTERVAL_INLINE static int product_error_sign(const B& x, const B& y, const B& r) {
+  static int product_error_sign(const B& x, const B& y, const B& r) {
     if constexpr (std::is_same_v<B, double>) {
       const B e = std::fma(x, y, -r);
       return (e > B(0)) - (e < B(0));
@@ -144,31 +136,31 @@ template <class B> struct Rounding {
     }
   }
   // Whether Dekker's splitting of x and y cannot overflow.
-  PGE_INTERVAL_INLINE static bool splittable(const B& x, const B& y) {
+  static bool splittable(const B& x, const B& y) {
     const B limit = std::numeric_limits<B>::max() * std::numeric_limits<B>::epsilon() / B(8);
     return (x < B(0) ? B(-x) : x) < limit && (y < B(0) ? B(-y) : y) < limit;
   }
   // sign(a / d - r) for d > 0: the sign of a - r d
   static int quotient_error_sign(const B& a, const B& d, const B& r) { return -product_error_sign(r, d, a); }
 
-  PGE_INTERVAL_INLINE static B down(const B& r, int error_sign) {
+  static B down(const B& r, int error_sign) {
     if (r == B(0) && error_sign == 0) return r;
     if (!ordinary(r)) return interval_next_down(r);
     return error_sign < 0 ? interval_next_down(r) : r;
   }
-  PGE_INTERVAL_INLINE static B up(const B& r, int error_sign) {
+  static B up(const B& r, int error_sign) {
     if (r == B(0) && error_sign == 0) return r;
     if (!ordinary(r)) return interval_next_up(r);
     return error_sign > 0 ? interval_next_up(r) : r;
   }
-  PGE_INTERVAL_INLINE static B add_down(const B& a, const B& b) { const B r = a + b; return down(r, sum_error_sign(a, b, r)); }
-  PGE_INTERVAL_INLINE static B add_up(const B& a, const B& b) { const B r = a + b; return up(r, sum_error_sign(a, b, r)); }
-  PGE_INTERVAL_INLINE static B mul_down(const B& x, const B& y) {
+  static B add_down(const B& a, const B& b) { const B r = a + b; return down(r, sum_error_sign(a, b, r)); }
+  static B add_up(const B& a, const B& b) { const B r = a + b; return up(r, sum_error_sign(a, b, r)); }
+  static B mul_down(const B& x, const B& y) {
     if (x == B(0) || y == B(0)) return B(0);
     const B r = x * y;
     return down(r, ordinary(r) && splittable(x, y) ? product_error_sign(x, y, r) : -1);
   }
-  PGE_INTERVAL_INLINE static B mul_up(const B& x, const B& y) {
+  static B mul_up(const B& x, const B& y) {
     if (x == B(0) || y == B(0)) return B(0);
     const B r = x * y;
     return up(r, ordinary(r) && splittable(x, y) ? product_error_sign(x, y, r) : 1);
@@ -210,14 +202,14 @@ template <class B> class Interval {
   bool contains(const B& x) const { return lo_ <= x && x <= hi_; }
   bool contains_zero() const { return contains(B(0)); }
 
-  PGE_INTERVAL_INLINE friend Interval operator-(const Interval& a) { return raw(-a.hi_, -a.lo_); }
-  PGE_INTERVAL_INLINE friend Interval operator+(const Interval& a, const Interval& b) {
+  friend Interval operator-(const Interval& a) { return raw(-a.hi_, -a.lo_); }
+  friend Interval operator+(const Interval& a, const Interval& b) {
     return raw(R::add_down(a.lo_, b.lo_), R::add_up(a.hi_, b.hi_));
   }
-  PGE_INTERVAL_INLINE friend Interval operator-(const Interval& a, const Interval& b) {
+  friend Interval operator-(const Interval& a, const Interval& b) {
     return raw(R::add_down(a.lo_, -b.hi_), R::add_up(a.hi_, -b.lo_));
   }
-  PGE_INTERVAL_INLINE friend Interval operator*(const Interval& a, const Interval& b) {
+  friend Interval operator*(const Interval& a, const Interval& b) {
     // By the signs of the factors (nine cases, two products each except when both straddle 0).
     const B &al = a.lo_, &ah = a.hi_, &bl = b.lo_, &bh = b.hi_;
     if (al >= B(0)) {
@@ -237,7 +229,7 @@ template <class B> class Interval {
   }
   // a b + c with each bound widened one ulp outward, without the exact error terms: cheaper, and
   // as tight where the result is added to far larger terms (the tails of the Taylor series).
-  PGE_INTERVAL_INLINE friend Interval loose_mul_add(const Interval& a, const Interval& b, const Interval& c) {
+  friend Interval loose_mul_add(const Interval& a, const Interval& b, const Interval& c) {
     B lo = std::numeric_limits<B>::infinity(), hi = -lo;
     for (const B& x : {a.lo_, a.hi_}) {
       for (const B& y : {b.lo_, b.hi_}) {
@@ -253,7 +245,7 @@ template <class B> class Interval {
   friend Interval operator/(const Interval& a, const B& d) {
     return raw(R::div_down(a.lo_, d), R::div_up(a.hi_, d));
   }
-  PGE_INTERVAL_INLINE Interval square() const {
+  Interval square() const {
     const B a = std::min(abs(lo_), abs(hi_)), b = std::max(abs(lo_), abs(hi_));
     if (lo_ >= B(0) || hi_ <= B(0)) return raw(R::mul_down(a, a), R::mul_up(b, b));
     return raw(B(0), R::mul_up(b, b));
@@ -286,7 +278,7 @@ template <class B> class Interval {
  private:
   using R = Rounding<B>;
   static B abs(const B& x) { return x < B(0) ? B(-x) : x; }
-  PGE_INTERVAL_INLINE static Interval raw(const B& lo, const B& hi) {
+  static Interval raw(const B& lo, const B& hi) {
     Interval r;
     r.lo_ = lo;
     r.hi_ = hi;
