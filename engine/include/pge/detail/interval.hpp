@@ -107,8 +107,10 @@ template <class B> struct Rounding {
     const B e = (a - (r - bb)) + (b - bb);
     return (e > B(0)) - (e < B(0));
   }
-  // sign(x y - r): Dekker's exact product (Dekker, "A floating-point technique for extending the
-  // available precision", Numer. Math. 18, 1971) for the built-in types, a wide product for Quad.
+  // sign(x y - r): one fused multiply-add for double (exact by IEEE 754: x y - r rounded once,
+  // and its sign is the exact error's), Dekker's exact product (Dekker, "A floating-point
+  // technique for extending the available precision", Numer. Math. 18, 1971) for float and long
+  // double, a wide product for Quad.
   static int product_error_sign(const B& x, const B& y, const B& r) {
     if constexpr (std::is_same_v<B, double>) {
       const B e = std::fma(x, y, -r);
