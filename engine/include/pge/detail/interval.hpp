@@ -422,6 +422,26 @@ template <class B> Reduced<B> reduce_half_pi(const B& x) {
   return out;
 }
 
+// sin x = x (s[0] + s[1] x^2 + ...) + E and cos x = c[0] + c[1] x^2 + ... + E by Horner in x^2,
+// the last `exact` steps of each with directed rounding and the earlier ones with the cheaper
+// one-ulp widening (loose_mul_add: rigorous too, as a rounding to nearest is never more than one
+// step off, subnormal steps included; right where those terms are scaled down by x^2 enough
+// that an ulp of theirs is far below one of the result), and each remainder E (a bound for the
+// |x| the coefficients were chosen for) added as an interval.
+template <class B>
+SinCos<B> taylor_sin_cos(const Interval<B>& x, const std::vector<Interval<B>>& sin_coef,
+                         const std::vector<Interval<B>>& cos_coef, const B& sin_remainder, const B& cos_remainder,
+                         std::size_t exact) {
+  const Interval<B> x2 = x.square();
+  const auto horner = [&](const std::vector<Interval<B>>& coef) {
+    Interval<B> v = coef.back();
+    for (std::size_t i = coef.size() - 1; i-- > 0;) v = i >= exact ? loose_mul_add(v, x2, coef[i]) : v * x2 + coef[i];
+    return v;
+  };
+  return {x * horner(sin_coef) + Interval<B>(-sin_remainder, sin_remainder),
+          horner(cos_coef) + Interval<B>(-cos_remainder, cos_remainder)};
+}
+
 // sin and cos of the reduced argument r (|r| <= ~0.8), each with its remainder: by the table
 // where r is narrow (a reduced point), by the series over all of |r| <= 0.8 otherwise.
 template <class B> SinCos<B> sin_cos_reduced(const Interval<B>& r) {
@@ -439,38 +459,21 @@ template <class B> SinCos<B> sin_cos_reduced(const Interval<B>& r) {
     // a = j / kSteps exactly (a power of two); d = r - a, enclosed whether or not it is exact.
     const Interval<B> d = r - Interval<B>(jb / B(TrigTables<B>::kSteps));
     if (j >= -tab.table_half && j <= tab.table_half && d.magnitude() <= tab.step_max) {
-      const Interval<B> d2 = d.square();
-      // The series' terms past the second are scaled by d^2 <= 2^-12 twice: one-ulp widening.
-      Interval<B> s = tab.step_sin_coef.back();
-      for (std::size_t i = tab.step_sin_coef.size() - 1; i-- > 1;) s = loose_mul_add(s, d2, tab.step_sin_coef[i]);
-      s = s * d2 + tab.step_sin_coef[0];
-      Interval<B> c = tab.step_cos_coef.back();
-      for (std::size_t i = tab.step_cos_coef.size() - 1; i-- > 1;) c = loose_mul_add(c, d2, tab.step_cos_coef[i]);
-      c = c * d2 + tab.step_cos_coef[0];
-      const B es = tab.step_sin_remainder, ec = tab.step_cos_remainder;
-      const Interval<B> sd = d * s + Interval<B>(-es, es), cd = c + Interval<B>(-ec, ec);
+      // The series' terms past the first are scaled by d^2 <= 2^-12 at least once more: one-ulp
+      // widening for them.
+      const SinCos<B> sc = taylor_sin_cos(d, tab.step_sin_coef, tab.step_cos_coef, tab.step_sin_remainder,
+                                          tab.step_cos_remainder, 1);
+      const Interval<B>& sd = sc.sin;
+      const Interval<B>& cd = sc.cos;
       const auto k = static_cast<std::size_t>(j + tab.table_half);
       const Interval<B>& sa = tab.table_sin[k];
       const Interval<B>& ca = tab.table_cos[k];
       return {sa * cd + ca * sd, ca * cd - sa * sd};
     }
   }
-  const Interval<B> r2 = r.square();
   // Horner in r^2; the terms past the second are scaled by r^2 <= 0.64 at least twice, so they
-  // take the cheaper one-ulp widening (loose_mul_add: rigorous too, as a rounding to nearest is
-  // never more than one step off, subnormal steps included).
-  Interval<B> s = tab.sin_coef.back();
-  for (std::size_t i = tab.sin_coef.size() - 1; i-- > 2;) s = loose_mul_add(s, r2, tab.sin_coef[i]);
-  s = (s * r2 + tab.sin_coef[1]) * r2 + tab.sin_coef[0];
-  Interval<B> c = tab.cos_coef.back();
-  for (std::size_t i = tab.cos_coef.size() - 1; i-- > 2;) c = loose_mul_add(c, r2, tab.cos_coef[i]);
-  c = (c * r2 + tab.cos_coef[1]) * r2 + tab.cos_coef[0];
-  // The remainders are bounded once, for |r| <= kReducedMax (TrigTables), far below an ulp.
-  const B es = tab.sin_remainder, ec = tab.cos_remainder;
-  SinCos<B> out;
-  out.sin = r * s + Interval<B>(-es, es);
-  out.cos = c + Interval<B>(-ec, ec);
-  return out;
+  // take the cheaper one-ulp widening.
+  return taylor_sin_cos(r, tab.sin_coef, tab.cos_coef, tab.sin_remainder, tab.cos_remainder, 2);
 }
 
 // sin(x), cos(x) for every x in X: each contains the exact range over X.
