@@ -37,6 +37,7 @@
 #include "refine.hpp"
 
 #include "pge/detail/predict_rotating.hpp"
+#include "pge/detail/predict_rotating_fast.hpp"
 #include "pge/detail/rigid.hpp"
 #include "tunnel_watch.hpp"
 

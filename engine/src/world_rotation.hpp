@@ -88,7 +88,9 @@ inline auto World<T>::Impl::predict_rotating(BodyIndex lo, BodyIndex hi, const T
   if (!(end > now)) end = std::min(wanted, detail::interval_next_up(now));  // progress, however late the clock
   detail::RotatingOptions options;
   options.correctly_rounded = solver == SolverKind::Certified;
-  const detail::RotatingContact<T> c = detail::predict_rotating_pair(sa, sb, now, end, StartRule::OverlapCollides, options);
+  const detail::RotatingContact<T> c =
+      solver == SolverKind::Fast ? detail::predict_rotating_pair_fast(sa, sb, now, end)
+                                 : detail::predict_rotating_pair(sa, sb, now, end, StartRule::OverlapCollides, options);
   if (c.rounding_undecided) ++counts.undecided_roundings;
   PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
   out.rotating = true;
