@@ -48,9 +48,9 @@ struct TraceContact {
 struct TraceStep {
   double t = 0;
   std::vector<TraceState> bodies;
-  std::vector<TraceTurn> turns;
   std::vector<TraceContact> contacts;
   int line = 0;
+  std::vector<TraceTurn> turns{};  // last, initialised: {t, bodies, contacts} still makes a step
 };
 
 // Events mode: one collision at `t` between bodies a and b (either order), their states just
