@@ -83,6 +83,11 @@ class Line {
     if (!value.is_array() || value.size() != 2) fail(path, "must be an array [x, y] of 2 numbers, got " + describe(value));
     return {number(value[0], path + 0), number(value[1], path + 1)};
   }
+  TraceTurn turn(const Json& value, const JsonPath& path) const {
+    if (!value.is_array() || value.size() != 2)
+      fail(path, "must be a turn [angle, angular velocity] of 2 numbers, got " + describe(value));
+    return {number(value[0], path + 0), number(value[1], path + 1)};
+  }
   TraceState state(const Json& value, const JsonPath& path) const {
     if (!value.is_array() || value.size() != 4)
       fail(path, "must be a state [x, y, vx, vy] of 4 numbers, got " + describe(value));
@@ -180,7 +185,7 @@ class TraceReader {
   }
 
   void step(const Line& l, const Json& j) {
-    l.keys(j, {}, {"event", "t", "bodies"}, {"contacts"});
+    l.keys(j, {}, {"event", "t", "bodies"}, {"turns", "contacts"});
     TraceStep s;
     s.line = l.number();
     s.t = time(l, j, true);
@@ -188,6 +193,12 @@ class TraceReader {
     if (states.size() != trace_.bodies.size())
       l.fail(key("bodies"), fmt::format("has {} states, the header lists {} bodies", states.size(), trace_.bodies.size()));
     for (std::size_t i = 0; i < states.size(); ++i) s.bodies.push_back(l.state(states[i], key("bodies") + static_cast<int>(i)));
+    if (j.contains("turns")) {  // [angle, angular velocity] of each body the header lists
+      const Json& turns = l.array(j["turns"], key("turns"));
+      if (turns.size() != trace_.bodies.size())
+        l.fail(key("turns"), fmt::format("has {} turns, the header lists {} bodies", turns.size(), trace_.bodies.size()));
+      for (std::size_t i = 0; i < turns.size(); ++i) s.turns.push_back(l.turn(turns[i], key("turns") + static_cast<int>(i)));
+    }
     if (j.contains("contacts")) {
       const Json& contacts = l.array(j["contacts"], key("contacts"));
       for (std::size_t i = 0; i < contacts.size(); ++i) {

@@ -37,7 +37,14 @@ void write_trace(std::ostream& out, const Trace& trace) {
     for (const TraceState& b : s.bodies) states.push_back(state(b));
     Json contacts = Json::array();
     for (const TraceContact& c : s.contacts) contacts.push_back(Json::array({c.a, c.b}));
-    put(out, {{"event", "step"}, {"t", s.t}, {"bodies", std::move(states)}, {"contacts", std::move(contacts)}});
+    Json line = {{"event", "step"}, {"t", s.t}, {"bodies", std::move(states)}};
+    if (!s.turns.empty()) {
+      Json turns = Json::array();
+      for (const TraceTurn& w : s.turns) turns.push_back(Json::array({w.angle, w.angular_velocity}));
+      line["turns"] = std::move(turns);
+    }
+    line["contacts"] = std::move(contacts);
+    put(out, line);
   }
   for (const TraceCollision& c : trace.collisions) {
     Json line = {{"event", "collision"}, {"t", c.t}, {"a", c.a}, {"b", c.b}};

@@ -68,12 +68,14 @@ class Box2dSim final : public PeerSim {
 
   Vec2d position(std::size_t i) const override {
     const b2Vec2 p = bodies_[i]->GetPosition();
-    return {static_cast<double>(p.x) / scale_, static_cast<double>(p.y) / scale_};
+    return scene_position(frames_[i], {static_cast<double>(p.x) / scale_, static_cast<double>(p.y) / scale_}, angle(i));
   }
   Vec2d velocity(std::size_t i) const override {
     const b2Vec2 v = bodies_[i]->GetLinearVelocity();
     return {static_cast<double>(v.x) / scale_, static_cast<double>(v.y) / scale_};
   }
+  double angle(std::size_t i) const override { return static_cast<double>(bodies_[i]->GetAngle()); }
+  double angular_velocity(std::size_t i) const override { return static_cast<double>(bodies_[i]->GetAngularVelocity()); }
 
   void touching_pairs(std::vector<Pair>& out) const override {
     out.clear();
@@ -89,13 +91,23 @@ class Box2dSim final : public PeerSim {
   }
 
  private:
+  // A body that turns in PGE has its origin at PGE's pivot, its shape about it, and is given
+  // its angle and spin; a fixed one that turns is kinematic (it spins at its constant rate,
+  // pushed by nothing). Every other body: fixed rotation, origin at the scene's position.
   void add_body(std::size_t i) {
     const BodyDesc& d = scene_.bodies[i];
+    const PeerBody pb = peer_body(d);
+    const bool turns = pb.frame.rotates;
+    frames_.push_back(pb.frame);
     b2BodyDef bd;
-    bd.type = d.fixed ? b2_staticBody : b2_dynamicBody;
-    bd.position = to_b2(d.position, scale_);
+    bd.type = !d.fixed ? b2_dynamicBody : turns ? b2_kinematicBody : b2_staticBody;
+    bd.position = to_b2(pb.origin, scale_);
     bd.linearVelocity = d.fixed ? b2Vec2(0.0f, 0.0f) : to_b2(d.velocity, scale_);
-    bd.fixedRotation = true;   // PGE bodies translate only
+    if (turns) {
+      bd.angle = static_cast<float>(d.angle);
+      bd.angularVelocity = static_cast<float>(d.angular_velocity);
+    }
+    bd.fixedRotation = !turns;
     bd.bullet = !d.fixed;      // continuous collision against moving bodies as well as static ones
     bd.allowSleep = false;
     bd.linearDamping = 0.0f;
@@ -124,7 +136,7 @@ class Box2dSim final : public PeerSim {
                                 " vertices; Box2D takes at most b2_maxPolygonVertices = " +
                                 std::to_string(b2_maxPolygonVertices));
         std::vector<b2Vec2> v;
-        for (const Vec2d& p : d.vertices) v.push_back(to_b2(p, scale_));
+        for (const Vec2d& p : pb.points) v.push_back(to_b2(p, scale_));
         polygon.Set(v.data(), static_cast<int32>(v.size()));
         if (polygon.m_count != static_cast<int32>(v.size()))
           throw PeerUnsupported("body \"" + d.id + "\": Box2D merged vertices of this polygon closer than its "
@@ -133,17 +145,24 @@ class Box2dSim final : public PeerSim {
         break;
       }
       case ShapeKind::Segment:
-        edge.SetTwoSided(to_b2(d.a, scale_), to_b2(d.b, scale_));
+        edge.SetTwoSided(to_b2(pb.points[0], scale_), to_b2(pb.points[1], scale_));
         fd.shape = &edge;
         break;
     }
     body->CreateFixture(&fd);
     if (!d.fixed) {
+      // The centre of mass at the origin: the reference point of a body that does not turn
+      // (forces act there, nothing turns), the pivot of one that does, with PGE's inertia about
+      // it (a length squared: scaled by scale^2).
       b2MassData md;
       md.mass = static_cast<float>(d.mass);
-      md.center = b2Vec2(0.0f, 0.0f);  // the reference point: forces act there, nothing turns
-      md.I = 0.0f;
+      md.center = b2Vec2(0.0f, 0.0f);
+      md.I = turns ? static_cast<float>(pb.frame.inertia * scale_ * scale_) : 0.0f;
       body->SetMassData(&md);
+      if (turns) {  // as given, whatever SetMassData did to the velocities
+        body->SetLinearVelocity(to_b2(d.velocity, scale_));
+        body->SetAngularVelocity(static_cast<float>(d.angular_velocity));
+      }
     }
   }
 
@@ -153,6 +172,7 @@ class Box2dSim final : public PeerSim {
   mutable b2World world_;  // mutable: b2Fixture::GetUserData has no const overload
   Listener listener_;
   std::vector<b2Body*> bodies_;
+  std::vector<RigidFrame> frames_;  // per scene body
 };
 
 }  // namespace

@@ -92,13 +92,15 @@ class ChipmunkSim final : public PeerSim {
   Vec2d position(std::size_t i) const override {
     if (scene_.bodies[i].fixed) return scene_.bodies[i].position;
     const cpVect p = cpBodyGetPosition(bodies_[i]);
-    return {p.x, p.y};
+    return scene_position(frames_[i], {p.x, p.y}, angle(i));
   }
   Vec2d velocity(std::size_t i) const override {
     if (scene_.bodies[i].fixed) return {};
     const cpVect v = cpBodyGetVelocity(bodies_[i]);
     return {v.x, v.y};
   }
+  double angle(std::size_t i) const override { return cpBodyGetAngle(bodies_[i]); }
+  double angular_velocity(std::size_t i) const override { return cpBodyGetAngularVelocity(bodies_[i]); }
 
   void touching_pairs(std::vector<std::pair<std::size_t, std::size_t>>& out) const override { out = touching_; }
   // Chipmunk pre-solves each pair of shapes at most once a step, and a scene body has one shape.
@@ -123,26 +125,36 @@ class ChipmunkSim final : public PeerSim {
 
   void add_body(std::size_t i) {
     const BodyDesc& d = scene_.bodies[i];
+    const PeerBody pb = peer_body(d);
+    frames_.push_back(pb.frame);
     cpBody* body = nullptr;
-    // Fixed shapes go on the space's static body in world coordinates; a moving body's shape is
-    // relative to its reference point, which is the body's position (centre of gravity at 0).
+    // Fixed shapes that do not turn go on the space's static body in world coordinates; another
+    // body's shape is relative to its origin (centre of gravity at 0): a body that does not turn,
+    // its reference point, with an infinite moment; one that turns, PGE's pivot, with PGE's
+    // moment of inertia (a fixed one: kinematic, spinning at its constant rate).
     Vec2d offset;
-    if (d.fixed) {
+    if (d.fixed && !pb.frame.rotates) {
       body = cpSpaceGetStaticBody(space_);
       offset = d.position;
     } else {
-      body = cpSpaceAddBody(space_, cpBodyNew(d.mass, INFINITY));  // infinite moment: no rotation
-      cpBodySetPosition(body, to_cp(d.position));
-      cpBodySetVelocity(body, to_cp(d.velocity));
+      body = cpSpaceAddBody(space_, d.fixed ? cpBodyNewKinematic() : cpBodyNew(d.mass, pb.frame.rotates ? pb.frame.inertia : INFINITY));
+      cpBodySetPosition(body, to_cp(pb.origin));
+      if (!d.fixed) cpBodySetVelocity(body, to_cp(d.velocity));
+      if (pb.frame.rotates) {
+        cpBodySetAngle(body, d.angle);
+        cpBodySetAngularVelocity(body, d.angular_velocity);
+      }
     }
     bodies_.push_back(body);
     cpShape* shape = nullptr;
     switch (d.shape) {
       case ShapeKind::Circle: shape = cpCircleShapeNew(body, d.radius, to_cp(offset)); break;
-      case ShapeKind::Segment: shape = cpSegmentShapeNew(body, to_cp(d.a + offset), to_cp(d.b + offset), 0.0); break;
+      case ShapeKind::Segment:
+        shape = cpSegmentShapeNew(body, to_cp(pb.points[0] + offset), to_cp(pb.points[1] + offset), 0.0);
+        break;
       case ShapeKind::Polygon: {
         std::vector<cpVect> v;
-        for (const Vec2d& p : d.vertices) v.push_back(to_cp(p + offset));
+        for (const Vec2d& p : pb.points) v.push_back(to_cp(p + offset));
         // Raw: the scene's polygons are already convex and counter-clockwise, as Chipmunk wants.
         shape = cpPolyShapeNewRaw(body, static_cast<int>(v.size()), v.data(), 0.0);
         break;
@@ -157,6 +169,7 @@ class ChipmunkSim final : public PeerSim {
   const Scene& scene_;
   cpSpace* space_;
   std::vector<cpBody*> bodies_;
+  std::vector<RigidFrame> frames_;  // per scene body
   std::vector<cpShape*> shapes_;
   std::vector<std::pair<std::size_t, std::size_t>> touching_;
 };

@@ -26,6 +26,10 @@ class PeerSim {
   // Scene units, body i of the scene (fixed bodies: where they were put).
   virtual Vec2d position(std::size_t i) const = 0;
   virtual Vec2d velocity(std::size_t i) const = 0;
+  // The body's angle (rad) and angular velocity (rad/s) as the peer holds them: a body with fixed
+  // rotation or an infinite moment stays at 0, 0.
+  virtual double angle(std::size_t i) const = 0;
+  virtual double angular_velocity(std::size_t i) const = 0;
   // The pairs of scene bodies the engine holds as touching after the last step (lower index first).
   virtual void touching_pairs(std::vector<std::pair<std::size_t, std::size_t>>& out) const = 0;
   // The pairs the engine reported in contact during the last step, lower index first, each once:
@@ -42,6 +46,23 @@ inline Vec2d field_acceleration(const Scene& scene, const BodyDesc& b) {
 // A body's restitution as PGE resolves it (< 0: the world's).
 inline double restitution_of(const Scene& scene, const BodyDesc& b) {
   return b.restitution < 0 ? scene.world.restitution : b.restitution;
+}
+
+// A scene body as a peer is given it (peers.hpp, RigidFrame): the world position of the peer
+// body's origin at the start (a turning body's pivot at the scene's angle, position + R(angle)
+// pivot; any other body's position) and the shape's points about that origin, unturned (a
+// polygon's vertices or a segment's two ends; none for a circle).
+struct PeerBody {
+  RigidFrame frame;
+  Vec2d origin;
+  std::vector<Vec2d> points;
+};
+PeerBody peer_body(const BodyDesc& d);
+
+// The scene's position of a body (its reference point) from its peer origin and angle: the
+// origin itself for a body that does not turn, origin - R(angle) pivot for one that does.
+inline Vec2d scene_position(const RigidFrame& f, Vec2d origin, double angle) {
+  return f.rotates ? origin - rotated(angle, f.pivot) : origin;
 }
 
 // Both throw PeerUnsupported for a scene the peer cannot take.

@@ -2,6 +2,7 @@
 #include "pge/peers.hpp"
 
 #include "peer_sim.hpp"
+#include "pge/detail/rigid.hpp"
 #include "pge/step_loop.hpp"
 #include "pge/tunnel.hpp"
 #include "pge/world.hpp"
@@ -39,20 +40,33 @@ template <class U> struct Totals {
   Vec2<U> momentum;
 };
 
-// Kinetic + potential energy (potential -m a . p of each body's field, as World measures it) and
-// momentum of the moving bodies, in U.
-template <class U, class P>
-Totals<U> totals(const Scene& scene, const std::vector<Vec2<P>>& p, const std::vector<Vec2<P>>& v) {
+// What the totals read of a moving body: its centre of mass (a body that does not turn: its
+// position), the velocity of it, and I omega^2 (0 for a body that does not turn).
+template <class P> struct MassState {
+  Vec2<P> centre, v;
+  P spin2{};
+};
+
+// Kinetic (I omega^2 / 2 included) + potential energy (potential -m a . c of each body's field
+// at its centre of mass, as World measures it) and momentum of the moving bodies, in U. For a
+// body that does not turn, spin2 is 0 and the sum is the translate-only one bit for bit.
+template <class U, class P> Totals<U> totals(const Scene& scene, const std::vector<MassState<P>>& s) {
   Totals<U> t;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDesc& b = scene.bodies[i];
     if (b.fixed) continue;
     const U m(b.mass);
-    const Vec2<U> vi = vec_cast<U>(v[i]), pi = vec_cast<U>(p[i]), a = vec_cast<U>(field_acceleration(scene, b));
-    t.energy += m * dot(vi, vi) / U(2) - m * dot(a, pi);
+    const Vec2<U> vi = vec_cast<U>(s[i].v), ci = vec_cast<U>(s[i].centre), a = vec_cast<U>(field_acceleration(scene, b));
+    t.energy += m * dot(vi, vi) / U(2) + U(s[i].spin2) / U(2) - m * dot(a, ci);
     t.momentum += vi * m;
   }
   return t;
+}
+
+// A peer's body at its reference point p and angle, moving at v and omega, as the totals read it.
+MassState<double> mass_state(const RigidFrame& f, Vec2d p, double angle, Vec2d v, double omega) {
+  if (!f.rotates) return {p, v, 0.0};
+  return {p + rotated(angle, f.pivot), v, f.inertia * omega * omega};
 }
 
 double length(Vec2d v) { return std::hypot(v.x, v.y); }
@@ -80,12 +94,14 @@ struct Placed {
   std::vector<Vec2d> v;
 };
 
-Placed place(const BodyDesc& b, Vec2d at) {
+// The shape at reference point `at`, turned by `angle` about it (0: not turned, exactly).
+Placed place(const BodyDesc& b, Vec2d at, double angle = 0) {
+  const auto turn = [angle](Vec2d v) { return angle == 0 ? v : rotated(angle, v); };
   Placed s;
   switch (b.shape) {
     case ShapeKind::Circle: s.circle = true; s.centre = at; s.radius = b.radius; break;
-    case ShapeKind::Segment: s.v = {b.a + at, b.b + at}; break;
-    case ShapeKind::Polygon: for (const Vec2d& p : b.vertices) s.v.push_back(p + at); break;
+    case ShapeKind::Segment: s.v = {turn(b.a) + at, turn(b.b) + at}; break;
+    case ShapeKind::Polygon: for (const Vec2d& p : b.vertices) s.v.push_back(turn(p) + at); break;
   }
   return s;
 }
@@ -139,8 +155,8 @@ struct Box {
   bool contains(Vec2d p) const { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; }
 };
 
-void add_shape(Box& box, const BodyDesc& b, Vec2d at) {
-  const Placed s = place(b, at);
+void add_shape(Box& box, const BodyDesc& b, Vec2d at, double angle) {
+  const Placed s = place(b, at, angle);
   if (s.circle) {
     box.add(s.centre - Vec2d{s.radius, s.radius});
     box.add(s.centre + Vec2d{s.radius, s.radius});
@@ -148,24 +164,49 @@ void add_shape(Box& box, const BodyDesc& b, Vec2d at) {
   for (const Vec2d& p : s.v) box.add(p);
 }
 
-// The end test of tunnelling, for every engine: a moving body whose reference point started
+// The point of a moving body the end test of tunnelling follows: its reference point, or for a
+// turning polygon its centre of mass (inside it at every angle; the reference point turns with
+// the body and may lie outside it), from the body at reference point p and angle.
+Vec2d followed_point(const BodyDesc& b, const RigidFrame& f, Vec2d p, double angle) {
+  return f.rotates && b.shape == ShapeKind::Polygon ? p + rotated(angle, f.pivot) : p;
+}
+
+// The end test of tunnelling, for every engine: a moving body whose followed point started
 // inside the bounding box of the fixed bodies and ended outside it, or ended inside a fixed
-// polygon or circle.
-bool escaped(const Scene& scene, const Box& fixed_box, std::size_t i, Vec2d end) {
-  if (fixed_box.contains(scene.bodies[i].position) && !fixed_box.contains(end)) return true;
+// polygon or circle that does not turn.
+bool escaped(const Scene& scene, const Box& fixed_box, Vec2d start, Vec2d end) {
+  if (fixed_box.contains(start) && !fixed_box.contains(end)) return true;
   for (const BodyDesc& f : scene.bodies) {
-    if (!f.fixed) continue;
+    if (!f.fixed || f.rotates) continue;
     const Placed s = place(f, f.position);
     if (s.circle ? length(end - s.centre) < s.radius : (s.v.size() > 2 && signed_distance(end, s.v) < 0)) return true;
   }
   return false;
 }
 
+// The box of the fixed bodies; a fixed body that turns adds its shape at every angle (the box
+// of its circle of reach about its position, its pivot).
 Box fixed_bounds(const Scene& scene) {
   Box box;
-  for (const BodyDesc& b : scene.bodies)
-    if (b.fixed) add_shape(box, b, b.position);
+  for (const BodyDesc& b : scene.bodies) {
+    if (!b.fixed) continue;
+    if (!b.rotates) {
+      add_shape(box, b, b.position, 0);
+      continue;
+    }
+    double reach = b.radius;
+    for (const Vec2d& v : place(b, {}).v) reach = std::max(reach, length(v));
+    box.add(b.position - Vec2d{reach, reach});
+    box.add(b.position + Vec2d{reach, reach});
+  }
   return box;
+}
+
+// Where each body starts, as the end test of tunnelling follows it (followed_point).
+std::vector<Vec2d> followed_starts(const Scene& scene) {
+  std::vector<Vec2d> out;
+  for (const BodyDesc& b : scene.bodies) out.push_back(followed_point(b, rigid_frame(b), b.position, b.rotates ? b.angle : 0));
+  return out;
 }
 
 double resolve_horizon(const Scene& scene, double horizon) { return horizon > 0 ? horizon : scene.run.until; }
@@ -183,16 +224,22 @@ Outcome run_pge_as(const Scene& scene, SolverKind solver, double horizon, const 
   wo.watch_tunnels = true;
   World<T> world(scene, wo);
   const std::size_t n = scene.bodies.size();
-  std::vector<Vec2<T>> p(n), v(n);
+  std::vector<Vec2<T>> p(n);
+  std::vector<T> angle(n);
+  std::vector<MassState<T>> m(n);
   const auto state = [&] {
     for (std::size_t i = 0; i < n; ++i) {
-      const BodySnapshot<T> b = world.snapshot(static_cast<BodyIndex>(i));
+      const auto bi = static_cast<BodyIndex>(i);
+      const BodySnapshot<T> b = world.snapshot(bi);
       p[i] = b.position;
-      v[i] = b.velocity;
+      angle[i] = b.angle;
+      m[i] = {b.position, b.velocity, T(0)};
+      if (world.rotates(bi) && !world.is_fixed(bi))
+        m[i] = {b.position + rotated(b.angle, world.pivot(bi)), b.velocity, world.inertia(bi) * b.angular_velocity * b.angular_velocity};
     }
-    return totals<Wide<T>>(scene, p, v);
+    return totals<Wide<T>>(scene, m);
   };
-  // state() leaves p and v at the end positions and velocities: the end measures below read them.
+  // state() leaves p and angle at the end positions and angles: the end measures below read them.
   const auto stepped = step_to_end(world, [&](const World<T>&) { return state(); });
   o.wall_seconds = stepped.wall_seconds;
   if (stepped.stop == StopReason::EventStorm) o.error = "event storm";
@@ -202,9 +249,12 @@ Outcome run_pge_as(const Scene& scene, SolverKind solver, double horizon, const 
   o.penetration = to_double(world.largest_contact_overlap().relative);
   std::vector<Vec2d> end(n);
   const Box box = fixed_bounds(scene);
+  const std::vector<Vec2d> starts = followed_starts(scene);
   for (std::size_t i = 0; i < n; ++i) {
     end[i] = {to_double(p[i].x), to_double(p[i].y)};
-    if (!scene.bodies[i].fixed && (crossed[i] || escaped(scene, box, i, end[i]))) ++o.tunnelled;
+    const BodyDesc& b = scene.bodies[i];
+    if (!b.fixed && (crossed[i] || escaped(scene, box, starts[i], followed_point(b, rigid_frame(b), end[i], to_double(angle[i])))))
+      ++o.tunnelled;
   }
   o.final_error = rms_error(scene, end, reference, scene_extent(scene));
   return o;
@@ -232,14 +282,19 @@ Trace step_trace_header(const Scene& scene, const Setting& s, const std::vector<
   return t;
 }
 
-// Appends the step that ended at t: the moving bodies' states (positions already read into p)
-// and the pairs the peer reported in it.
+// Appends the step that ended at t: the moving bodies' states (positions and angles already read
+// into p and angle; in a scene with rotation each body's angle and angular velocity too, as the
+// peer holds them: 0, 0 for a body with fixed rotation) and the pairs the peer reported in it.
 void record_step(Trace& trace, const Scene& scene, const detail::PeerSim& sim, double t, const std::vector<std::size_t>& moving,
-                 const std::vector<Vec2d>& p, std::vector<std::pair<std::size_t, std::size_t>>& scratch) {
+                 const std::vector<Vec2d>& p, const std::vector<double>& angle, bool rotation,
+                 std::vector<std::pair<std::size_t, std::size_t>>& scratch) {
   TraceStep& step = trace.steps.emplace_back();
   step.t = t;
   step.bodies.reserve(moving.size());
   for (std::size_t i : moving) step.bodies.push_back({p[i], sim.velocity(i)});
+  if (rotation)
+    for (std::size_t i : moving)
+      step.turns.push_back({scene.bodies[i].rotates ? angle[i] : sim.angle(i), sim.angular_velocity(i)});
   sim.reported_pairs(scratch);
   for (const auto& [a, b] : scratch) step.contacts.push_back({scene.bodies[a].id, scene.bodies[b].id});
 }
@@ -256,44 +311,64 @@ Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std
 #endif
   if (!sim) throw std::logic_error("no adapter for engine \"" + s.engine + "\"");
   const std::size_t n = scene.bodies.size();
-  std::vector<Vec2d> p(n), v(n);
-  for (std::size_t i = 0; i < n; ++i) p[i] = scene.bodies[i].position, v[i] = scene.bodies[i].fixed ? Vec2d{} : scene.bodies[i].velocity;
-  const Totals<long double> start = totals<long double>(scene, p, v);
+  std::vector<Vec2d> p(n);
+  std::vector<double> angle(n, 0.0);
+  std::vector<RigidFrame> frames(n);
+  std::vector<std::size_t> moving, turning;  // turning: moving or fixed
+  std::vector<MassState<double>> m(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyDesc& b = scene.bodies[i];
+    frames[i] = rigid_frame(b);
+    p[i] = b.position;
+    if (frames[i].rotates) angle[i] = b.angle, turning.push_back(i);
+    if (b.fixed) continue;
+    moving.push_back(i);
+    m[i] = mass_state(frames[i], p[i], angle[i], b.velocity, frames[i].rotates ? b.angular_velocity : 0.0);
+  }
+  const Totals<long double> start = totals<long double>(scene, m);
   const auto steps = static_cast<std::uint64_t>(std::max(1.0, std::round(horizon * s.hz)));
   const double dt = horizon / static_cast<double>(steps);
-  std::vector<std::size_t> moving;
-  for (std::size_t i = 0; i < n; ++i)
-    if (!scene.bodies[i].fixed) moving.push_back(i);
   const FixedBodies fixed(scene);
   std::vector<char> crossed(n, 0);
   std::vector<std::pair<std::size_t, std::size_t>> touching;
   if (record == Record::StepTrace) o.trace = step_trace_header(scene, s, moving, steps);
-  std::vector<Vec2d> prev = p;
+  std::vector<Vec2d> prev = followed_starts(scene);
   double wall = 0;
   for (std::uint64_t k = 0; k < steps; ++k) {
     const auto t0 = Clock::now();
     sim->step(dt);
     wall += std::chrono::duration<double>(Clock::now() - t0).count();
+    for (std::size_t i : turning) angle[i] = sim->angle(i);
     for (std::size_t i : moving) p[i] = sim->position(i);
     // Untimed, as the measures below: the trace costs the timed run nothing.
-    if (o.trace) record_step(*o.trace, scene, *sim, dt * static_cast<double>(k + 1), moving, p, touching);
+    if (o.trace) record_step(*o.trace, scene, *sim, dt * static_cast<double>(k + 1), moving, p, angle, !turning.empty(), touching);
     sim->touching_pairs(touching);
     for (const auto& [a, b] : touching) {
-      const double depth = overlap_depth(scene.bodies[a], p[a], scene.bodies[b], p[b]);
+      const double depth = overlap_depth(scene.bodies[a], p[a], angle[a], scene.bodies[b], p[b], angle[b]);
       if (depth > 0) o.penetration = std::max(o.penetration, depth / std::min(body_size(scene.bodies[a]), body_size(scene.bodies[b])));
     }
+    // A turning polygon's centre of mass is followed (followed_point), a turning segment not at
+    // all (it has no interior point, as a moving segment that does not turn: pge/tunnel.hpp).
     for (std::size_t i : moving) {
-      if (!crossed[i] && fixed.passed_through(static_cast<BodyIndex>(i), straight_path(prev[i], p[i])) != kNoBody)
-        crossed[i] = 1;
-      prev[i] = p[i];
+      const BodyDesc& b = scene.bodies[i];
+      const Vec2d at = followed_point(b, frames[i], p[i], angle[i]);
+      if (!crossed[i]) {
+        const PositionPath path = straight_path(prev[i], at);
+        const BodyIndex hit = !frames[i].rotates                  ? fixed.passed_through(static_cast<BodyIndex>(i), path)
+                              : b.shape == ShapeKind::Polygon ? fixed.point_passed_through({}, path)
+                                                               : kNoBody;
+        if (hit != kNoBody) crossed[i] = 1;
+      }
+      prev[i] = at;
     }
   }
   o.wall_seconds = wall;
-  for (std::size_t i : moving) v[i] = sim->velocity(i);
-  set_drifts(o, start, totals<long double>(scene, p, v));
+  for (std::size_t i : moving) m[i] = mass_state(frames[i], p[i], angle[i], sim->velocity(i), sim->angular_velocity(i));
+  set_drifts(o, start, totals<long double>(scene, m));
   const Box box = fixed_bounds(scene);
+  const std::vector<Vec2d> starts = followed_starts(scene);
   for (std::size_t i : moving)
-    if (crossed[i] || escaped(scene, box, i, p[i])) ++o.tunnelled;
+    if (crossed[i] || escaped(scene, box, starts[i], followed_point(scene.bodies[i], frames[i], p[i], angle[i]))) ++o.tunnelled;
   o.final_error = rms_error(scene, p, reference, scene_extent(scene));
   return o;
 }
@@ -410,8 +485,41 @@ Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon, 
   return o;
 }
 
-double overlap_depth(const BodyDesc& a, Vec2d pa, const BodyDesc& b, Vec2d pb) {
-  const Placed sa = place(a, pa), sb = place(b, pb);
+RigidFrame rigid_frame(const BodyDesc& b) {
+  RigidFrame f;
+  f.rotates = b.rotates;
+  if (!b.rotates || b.fixed) return f;  // a fixed body turns about its position, with no inertia
+  double per_mass = 0;
+  if (b.shape == ShapeKind::Polygon) {
+    const pge::detail::MassProperties<double> mp = pge::detail::polygon_mass_properties(b.vertices);
+    f.pivot = mp.centroid;
+    per_mass = mp.inertia_per_mass;
+  } else if (b.shape == ShapeKind::Segment) {
+    f.pivot = (b.a + b.b) * 0.5;
+    per_mass = pge::detail::rod_inertia_per_mass(b.a, b.b);
+  }
+  f.inertia = b.inertia > 0 ? b.inertia : b.mass * per_mass;
+  return f;
+}
+
+namespace detail {
+PeerBody peer_body(const BodyDesc& d) {
+  PeerBody out;
+  out.frame = rigid_frame(d);
+  out.origin = d.position;
+  if (d.shape == ShapeKind::Segment) out.points = {d.a, d.b};
+  if (d.shape == ShapeKind::Polygon) out.points = d.vertices;
+  if (!out.frame.rotates) return out;
+  out.origin = d.position + rotated(d.angle, out.frame.pivot);
+  for (Vec2d& v : out.points) v -= out.frame.pivot;
+  return out;
+}
+}  // namespace detail
+
+double overlap_depth(const BodyDesc& a, Vec2d pa, const BodyDesc& b, Vec2d pb) { return overlap_depth(a, pa, 0, b, pb, 0); }
+
+double overlap_depth(const BodyDesc& a, Vec2d pa, double angle_a, const BodyDesc& b, Vec2d pb, double angle_b) {
+  const Placed sa = place(a, pa, angle_a), sb = place(b, pb, angle_b);
   double depth = 0;
   if (sa.circle && sb.circle) depth = sa.radius + sb.radius - length(sa.centre - sb.centre);
   else if (sa.circle) depth = sa.radius - signed_distance(sa.centre, sb.v);
@@ -436,7 +544,7 @@ double body_size(const BodyDesc& b) {
 
 double scene_extent(const Scene& scene) {
   Box box;
-  for (const BodyDesc& b : scene.bodies) add_shape(box, b, b.position);
+  for (const BodyDesc& b : scene.bodies) add_shape(box, b, b.position, b.rotates ? b.angle : 0);
   return box.lo.x <= box.hi.x ? length(box.hi - box.lo) : 0.0;
 }
 

@@ -11,6 +11,7 @@ scenes=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "compare.sh: $*" >&2; exit 1; }
+. "$(dirname "$0")/peer_rows.sh"
 
 $cmd "$scenes/peers-head-on.json" --json "$tmp/rows.json" >"$tmp/out.md" 2>"$tmp/err.txt" ||
   fail "exit $? on head-on; stderr: $(cat "$tmp/err.txt")"
@@ -20,14 +21,7 @@ grep -q '^| engine | setting | wall time (s) | energy drift | momentum drift | p
 # PGE certified is exact on a head-on collision: energy drift 0 and final-state error 0.
 # PGE rows have no step verdicts (-): pge check judges their events.
 grep -q '^| pge | pge certified/double | [0-9.]* | 0 | 0 | 0 | 0 | 0 | - | - | - | - |$' "$tmp/out.md" || fail "pge certified row not exact"
-for peer in box2d chipmunk; do
-  rows=$(grep -c "^| $peer | $peer " "$tmp/out.md")
-  if grep -q "$peer is not installed" "$tmp/err.txt"; then
-    [ "$rows" -eq 0 ] || fail "$peer skipped but has rows"
-  else
-    [ "$rows" -eq 6 ] || fail "expected 6 $peer rows, got $rows"
-  fi
-done
+installed_peers "$tmp/out.md" "$tmp/err.txt" >/dev/null || exit 1
 # --solvers and --scalars: a PGE row for each pair, exact on head-on in every scalar.
 $cmd "$scenes/peers-head-on.json" --peers chipmunk --solvers robust,certified --scalars float,quad >"$tmp/scalars.md" 2>"$tmp/err2.txt" ||
   fail "exit $? with --scalars; stderr: $(cat "$tmp/err2.txt")"

@@ -27,6 +27,13 @@ struct TraceState {
   Vec2d velocity;
 };
 
+// A body's turn at one time: angle in radians and angular velocity in rad/s (0, 0 for a body
+// that does not turn).
+struct TraceTurn {
+  double angle = 0;
+  double angular_velocity = 0;
+};
+
 // A pair of bodies the engine reported in contact (either order of ids).
 struct TraceContact {
   std::string a, b;
@@ -34,12 +41,16 @@ struct TraceContact {
 
 // Steps mode: the step that ends at `t` (it starts where the previous step ended, the first at
 // the scene's start, t = 0). `bodies` holds the state at `t` of every body Trace::bodies names,
-// in that order; `contacts` the pairs the engine reported during the step, each once.
+// in that order; `contacts` the pairs the engine reported during the step, each once. In a scene
+// with rotation `turns` holds each of those bodies' turn at `t`, in the same order (positions
+// are then reference points, turned with the body, and velocities the centre of mass's);
+// otherwise it is empty. The referee does not judge rotating scenes yet (docs/rotation.md).
 struct TraceStep {
   double t = 0;
   std::vector<TraceState> bodies;
   std::vector<TraceContact> contacts;
   int line = 0;
+  std::vector<TraceTurn> turns{};  // last, initialised: {t, bodies, contacts} still makes a step
 };
 
 // Events mode: one collision at `t` between bodies a and b (either order), their states just

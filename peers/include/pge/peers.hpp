@@ -5,7 +5,15 @@
 //
 // How each peer is set up (the most favourable settings for accuracy; peers.cpp and the adapters
 // say why for each):
-//  - friction 0, linear damping 0, no sleeping, fixed rotation (PGE bodies translate only);
+//  - friction 0, linear and angular damping 0, no sleeping;
+//  - rotation as PGE has it (pge-scene/2, docs/rotation.md): a body that rotates in PGE turns in
+//    the peer, from its angle and angular velocity, about PGE's pivot (a moving polygon's area
+//    centroid, a moving segment's midpoint) with PGE's moment of inertia (rigid_frame below): the
+//    peer body's origin is the pivot and its centre of mass is there (Box2D SetMassData, centre 0;
+//    Chipmunk's centre of gravity, 0), and positions are read back in the scene's terms (the
+//    reference point, pivot - R(angle) pivot offset). A fixed body that spins is a kinematic body
+//    turning at its constant rate. Every other body keeps fixed rotation (Box2D) / an infinite
+//    moment (Chipmunk), exactly as before rotation existed;
 //  - restitution per pair = the smaller of the two bodies' (PGE's rule), overriding Box2D's max and
 //    Chipmunk's product in a pre-solve callback;
 //  - gravity and each body's own acceleration applied as a constant force m (g + a) every step;
@@ -14,7 +22,7 @@
 //  - Box2D: every moving body a bullet (continuous collision against moving bodies too),
 //    restitution threshold 0 (restitution applies at every approach speed), and the scene scaled
 //    into Box2D's metre range (a power of two: peers/src/peer_sim.hpp, box2d_length_scale), since its slop and speed cap are compile-time
-//    lengths; Chipmunk: collision slop a small fraction of the smallest body (its default, 0.1, is
+//    lengths (and b2_maxRotation caps a turn at a quarter turn per step: 0.5 pi hz rad/s); Chipmunk: collision slop a small fraction of the smallest body (its default, 0.1, is
 //    an absolute length), collision bias its default.
 #pragma once
 
@@ -41,7 +49,7 @@ struct Outcome {
   std::string scene;
   double horizon = 0;          // simulated seconds
   double wall_seconds = 0;     // the stepping alone (peers: Step calls; PGE: world.step() loop)
-  double energy_drift = 0;     // (E_end - E_start) / |E_start| (kinetic + potential), signed
+  double energy_drift = 0;     // (E_end - E_start) / |E_start| (kinetic, I omega^2 / 2 included, + potential), signed
   double momentum_drift = 0;   // |P_end - P_start| / |P_start| (moving bodies; 0/0 -> 0)
   double penetration = 0;      // largest overlap seen at any step end, as a fraction of the smaller body's size
   int tunnelled = 0;           // moving bodies that passed through a fixed body (pge/tunnel.hpp), or ended
@@ -50,8 +58,9 @@ struct Outcome {
   std::string reference;       // "pge certified double"
   std::string error;           // non-empty: not run (why)
   // Peers run with Record::StepTrace: the run as a step trace (pge/trace.hpp, steps mode: each
-  // step's end time, every moving body's state then, the pairs the engine reported in the step;
-  // engine = the setting's label), for the referee (pge/judge.hpp). It is recorded between the
+  // step's end time, every moving body's state then (in a scene with rotation its angle and
+  // angular velocity too), the pairs the engine reported in the step; engine = the setting's
+  // label), for the referee (pge/judge.hpp; it does not judge rotating scenes yet). It is recorded between the
   // timed Step calls, so wall_seconds does not include it, but for Box2D's note of each contact
   // that begins (a callback inside Step: one vector append per beginning contact, recorded
   // whether a trace is asked for or not). Empty otherwise.
@@ -81,18 +90,34 @@ Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon);
 Outcome run_setting(const LoadedScene& scene, const Setting& s, double horizon,
                     const std::vector<Vec2d>& reference, Record record = Record::Nothing);
 
-// The reference final state: every body's position at the horizon from PGE, certified solver,
-// double, with no collision budget. On the scenes with exact answers (head-on, Newton's cradle, a
+// The reference final state: every body's position (the scene's terms: a turning body's
+// reference point) at the horizon from PGE, certified solver, double, with no collision budget. On the scenes with exact answers (head-on, Newton's cradle, a
 // bullet against an axis-parallel wall) this is the exact answer: their inputs are small dyadic
 // numbers, every operation on them is exact, and the certified solver rounds each event time
 // correctly (fixtures/scenes/simultaneous/cradle-5.json and scale/thin-wall-1e-4.json assert it
 // against the exact oracle).
 std::vector<Vec2d> reference_positions(const Scene& scene, double horizon);
 
+// How a peer holds body b, PGE's way (docs/rotation.md): whether it turns (BodyDesc::rotates),
+// the point it turns about relative to its position at angle 0 (a moving polygon's area
+// centroid, a moving segment's midpoint, 0 for a fixed body), and its moment of inertia about
+// that point (the scene's `inertia`, else a uniform lamina's, a segment a thin rod's, of its mass,
+// from the engine's own pge/detail/rigid.hpp). A body that does not turn, and a fixed body's
+// inertia (infinite): 0.
+struct RigidFrame {
+  bool rotates = false;
+  Vec2d pivot;
+  double inertia = 0;
+};
+RigidFrame rigid_frame(const BodyDesc& b);
+
 // The measures, exposed for tests. Overlap depth of two bodies at the given positions (0 when
 // apart): circles by centre distance, a circle against a polygon or segment by the signed
-// distance of its centre, polygons and segments by separating-axis depth.
+// distance of its centre, polygons and segments by separating-axis depth. The second form turns
+// each body's shape by its angle (radians, about its position: a turning body's reference point,
+// which turns with it) first.
 double overlap_depth(const BodyDesc& a, Vec2d pa, const BodyDesc& b, Vec2d pb);
+double overlap_depth(const BodyDesc& a, Vec2d pa, double angle_a, const BodyDesc& b, Vec2d pb, double angle_b);
 // The size a penetration is measured in: a circle's radius, a polygon's inradius (the smallest
 // distance from its vertex centroid to a side line), a segment's: infinite (it has no thickness).
 double body_size(const BodyDesc& b);
