@@ -398,6 +398,17 @@ template <class B> struct Reduced {
   bool ok = true;  // false past TrigTables::reduce_limit (or not finite)
 };
 
+// The integer nearest x, as a value of B: how both reductions below pick their multiple (of
+// pi/2, of the table's step); each is exact whichever integer it picks.
+template <class B> B nearest_integer(const B& x) {
+  if constexpr (std::is_floating_point_v<B>) {
+    return std::nearbyint(x);
+  } else {
+    using boost::multiprecision::round;
+    return B(round(x));
+  }
+}
+
 template <class B> Reduced<B> reduce_half_pi(const B& x) {
   const TrigTables<B>& tab = TrigTables<B>::get();
   Reduced<B> out;
@@ -405,12 +416,7 @@ template <class B> Reduced<B> reduce_half_pi(const B& x) {
     out.ok = false;
     return out;
   }
-  using std::nearbyint;
-  using boost::multiprecision::round;
-  const B kb = [&] {
-    if constexpr (std::is_floating_point_v<B>) return std::nearbyint(x * tab.two_over_pi);
-    else return B(round(B(x * tab.two_over_pi)));
-  }();
+  const B kb = nearest_integer(B(x * tab.two_over_pi));
   out.k = static_cast<long long>(kb);
   if (out.k == 0) {
     out.r = Interval<B>(x);
@@ -448,13 +454,7 @@ template <class B> SinCos<B> sin_cos_reduced(const Interval<B>& r) {
   const TrigTables<B>& tab = TrigTables<B>::get();
   if (!(r.magnitude() <= tab.reduced_max)) return {Interval<B>(B(-1), B(1)), Interval<B>(B(-1), B(1))};
   {
-    using std::nearbyint;
-    using boost::multiprecision::round;
-    const B scaled = r.mid() * B(TrigTables<B>::kSteps);
-    const B jb = [&] {
-      if constexpr (std::is_floating_point_v<B>) return nearbyint(scaled);
-      else return B(round(scaled));
-    }();
+    const B jb = nearest_integer(B(r.mid() * B(TrigTables<B>::kSteps)));
     const int j = static_cast<int>(jb);
     // a = j / kSteps exactly (a power of two); d = r - a, enclosed whether or not it is exact.
     const Interval<B> d = r - Interval<B>(jb / B(TrigTables<B>::kSteps));
