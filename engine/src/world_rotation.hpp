@@ -23,16 +23,9 @@ template <class T> inline auto World<T>::Impl::setup_spin(std::size_t i, Body& b
   r.omega = T(d.angular_velocity);
   const std::vector<Vec2<T>>& local = b.shape.local;
   if (!d.fixed) {
-    T per_mass{};
-    if (d.shape == ShapeKind::Polygon) {
-      const detail::MassProperties<T> mp = detail::polygon_mass_properties(local);
-      r.pivot = mp.centroid;
-      per_mass = mp.inertia_per_mass;
-    } else {
-      r.pivot = (local[0] + local[1]) * T(0.5);
-      per_mass = detail::rod_inertia_per_mass(local[0], local[1]);
-    }
-    r.inertia = d.inertia > 0 ? T(d.inertia) : T(d.mass) * per_mass;
+    const detail::TurningMass<T> m = detail::turning_mass(local, T(d.mass), d.inertia > 0 ? T(d.inertia) : T(0));
+    r.pivot = m.pivot;
+    r.inertia = m.inertia;
     r.inv_inertia = T(1) / r.inertia;
   }
   T reach{};

@@ -489,16 +489,14 @@ RigidFrame rigid_frame(const BodyDesc& b) {
   RigidFrame f;
   f.rotates = b.rotates;
   if (!b.rotates || b.fixed) return f;  // a fixed body turns about its position, with no inertia
-  double per_mass = 0;
-  if (b.shape == ShapeKind::Polygon) {
-    const pge::detail::MassProperties<double> mp = pge::detail::polygon_mass_properties(b.vertices);
-    f.pivot = mp.centroid;
-    per_mass = mp.inertia_per_mass;
-  } else if (b.shape == ShapeKind::Segment) {
-    f.pivot = (b.a + b.b) * 0.5;
-    per_mass = pge::detail::rod_inertia_per_mass(b.a, b.b);
+  if (b.shape == ShapeKind::Circle) {   // no outline: no pivot offset, no lamina
+    f.inertia = b.inertia > 0 ? b.inertia : 0.0;
+    return f;
   }
-  f.inertia = b.inertia > 0 ? b.inertia : b.mass * per_mass;
+  const pge::detail::TurningMass<double> m = pge::detail::turning_mass(
+      b.shape == ShapeKind::Segment ? std::vector<Vec2d>{b.a, b.b} : b.vertices, b.mass, b.inertia);
+  f.pivot = m.pivot;
+  f.inertia = m.inertia;
   return f;
 }
 

@@ -64,6 +64,30 @@ template <class T> T rod_inertia_per_mass(const Vec2<T>& a, const Vec2<T>& b) {
   return dot(d, d) / T(12);
 }
 
+// Where a moving body that turns turns, and its moment of inertia there: an outline of two
+// vertices (a segment) about its midpoint as a thin rod, of three or more (a polygon) about its
+// area centroid as a uniform lamina; a given inertia (> 0) replaces the computed one. The
+// engine (World's setup_spin) and the peers (peers::rigid_frame) both take it from here.
+template <class T> struct TurningMass {
+  Vec2<T> pivot;
+  T inertia{};
+};
+template <class T>
+TurningMass<T> turning_mass(const std::vector<Vec2<T>>& outline, const T& mass, const T& given_inertia) {
+  TurningMass<T> out;
+  T per_mass{};
+  if (outline.size() == 2) {
+    out.pivot = (outline[0] + outline[1]) * T(0.5);
+    per_mass = rod_inertia_per_mass(outline[0], outline[1]);
+  } else {
+    const MassProperties<T> mp = polygon_mass_properties(outline);
+    out.pivot = mp.centroid;
+    per_mass = mp.inertia_per_mass;
+  }
+  out.inertia = given_inertia > T(0) ? given_inertia : mass * per_mass;
+  return out;
+}
+
 template <class T> struct RigidState {
   Vec2<T> v;
   T w{};            // angular velocity, counter-clockwise positive
