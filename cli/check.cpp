@@ -104,6 +104,7 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   c.scalar = std::string(scalar_name(ScalarTraits<T>::kind));
   c.solver = std::string(solver_name(world.solver()));
   c.time_bound_ulps = promised_time_error_ulps(world.solver());
+  c.rotating_time_bound_ulps = promised_rotating_time_error_ulps(world.solver());
   c.filter = !opt.no_filter;
   // The block may turn the oracle off for the scene's own run; a shorter run is judged as always.
   const bool measured = expect.present && outcome.enforcement != Enforcement::Verdicts;
@@ -117,9 +118,10 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   std::optional<oracle::Referee> referee;
   if (c.judged) {
     referee.emplace(oracle::exact_state(world), oracle::RefereeOptions{!opt.no_filter, oracle::kAgreeUlps});
-    oracle::follow(world, *referee, [&c, &observe](const CollisionInfo<T>& info, const oracle::ExactEvent& e,
-                                                   const oracle::Judgement& j) {
+    oracle::follow(world, *referee, [&c, &observe, &world](const CollisionInfo<T>& info, const oracle::ExactEvent& e,
+                                                           const oracle::Judgement& j) {
       c.events.push_back(make_record(c.events.size(), to_double(info.time), e, j));
+      c.events.back().rotating = world.rotates(info.a) || world.rotates(info.b);
       observe(info);
     });
   } else {

@@ -210,7 +210,8 @@ double momentum_relative_drift(const SceneCheck& c) {
 std::uint64_t past_time_bound(const SceneCheck& c) {
   if (!c.time_bound_ulps) return 0;
   return static_cast<std::uint64_t>(std::count_if(c.events.begin(), c.events.end(), [&c](const EventRecord& r) {
-    return r.has_exact_time && std::llabs(r.ulps) > *c.time_bound_ulps;
+    const std::optional<long long>& bound = r.rotating ? c.rotating_time_bound_ulps : c.time_bound_ulps;
+    return r.has_exact_time && bound && std::llabs(r.ulps) > *bound;
   }));
 }
 

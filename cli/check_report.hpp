@@ -35,6 +35,7 @@ struct EventRecord {
   double energy_change = 0, energy_relative = 0;
   double momentum_change = 0, momentum_relative = 0;
   double gap = 0, contact_distance = 0;
+  bool rotating = false;  // a pair with a rotating body: its time bound is the rotating one
 };
 
 // Two bodies as "\"a\"-\"b\"" ("?" for an index the scene does not have).
@@ -47,6 +48,7 @@ struct SceneCheck {
   // The solver's promised bound on an event's time error in ulps (promised_time_error_ulps);
   // nothing for fast, which promises none.
   std::optional<long long> time_bound_ulps;
+  std::optional<long long> rotating_time_bound_ulps;  // pairs with a rotating body (promised_rotating_time_error_ulps)
   StopReason stop_reason = StopReason::ReachedUntil;
   BodyIndex storm_a = kNoBody, storm_b = kNoBody;  // an event storm's two bodies
   std::size_t bodies = 0;

@@ -38,7 +38,7 @@ constexpr const char* kPgeNotJudged = "PGE's events are judged one by one by pge
 constexpr const char* kNotAsked = "not judged (--no-judge)";
 // Why the peers' rows of a scene with rotation have none (issue 26, "The referee for rotation").
 constexpr const char* kRotationNotJudged =
-    "not judged: the scene has rotating bodies, which the exact referee does not judge yet (docs/rotation.md)";
+    "not judged: the scene has rotating bodies, and the referee judges their contacts in PGE's own runs (pge check), not yet in other engines' step traces (docs/rotation.md)";
 
 // One setting's outcome and the exact referee's verdicts on its step trace (peers), or why there
 // are none.
@@ -214,7 +214,7 @@ int compare_command(const CompareOptions& opt) {
       return kExitOutput;
     }
   }
-  // The referee does not judge rotating bodies yet: a scene with any is run and measured, its
+  // The referee does not judge step traces of rotating bodies yet: a scene with any is run and measured, its
   // peers' traces written where asked, but not judged (the rows say so).
   const bool rotation = has_rotation(scene.scene);
   const bool judge = !opt.no_judge && !rotation;

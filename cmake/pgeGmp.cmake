@@ -14,3 +14,20 @@ if(NOT TARGET pge::gmpxx)
       INTERFACE_LINK_LIBRARIES "${PGE_GMP_LIBRARY}")
   endif()
 endif()
+
+# pge::arb: Arb's rigorous ball arithmetic (arb.h, libflint-arb) over FLINT (libflint), which the
+# oracle's referee for rotating bodies uses in one translation unit (oracle/src/rotating.cpp).
+# Linked privately; an installed package's consumers link it too (static libraries). Debian:
+# libflint-arb-dev (which brings libflint-dev).
+if(NOT TARGET pge::arb)
+  find_path(PGE_ARB_INCLUDE_DIR arb.h)
+  find_library(PGE_ARB_LIBRARY NAMES flint-arb arb)
+  find_library(PGE_FLINT_LIBRARY flint)
+  if(PGE_ARB_INCLUDE_DIR AND PGE_ARB_LIBRARY AND PGE_FLINT_LIBRARY AND TARGET pge::gmpxx)
+    add_library(pge::arb UNKNOWN IMPORTED)
+    set_target_properties(pge::arb PROPERTIES
+      IMPORTED_LOCATION "${PGE_ARB_LIBRARY}"
+      INTERFACE_INCLUDE_DIRECTORIES "${PGE_ARB_INCLUDE_DIR}"
+      INTERFACE_LINK_LIBRARIES "${PGE_FLINT_LIBRARY};pge::gmpxx")
+  endif()
+endif()

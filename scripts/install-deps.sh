@@ -11,7 +11,7 @@ set -euo pipefail
 
 required=(
   build-essential cmake git pkg-config
-  libboost-dev libgmp-dev libmpfr-dev libmpfi-dev libcgal-dev
+  libboost-dev libgmp-dev libmpfr-dev libmpfi-dev libcgal-dev libflint-arb-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   gnuplot-nox chromium python3 libbox2d-dev libchipmunk-dev

@@ -30,6 +30,9 @@ inline double next_up(double x) {
 
 inline double next_down(double x) { return -next_up(-x); }
 
+// Upper bound of sqrt(x) for x >= 0 (sqrt is correctly rounded).
+inline double sqrt_up(double x) { return x <= 0 ? 0.0 : next_up(std::sqrt(x)); }
+
 // Bounds of the exact result from the rounded result r of a sum or difference.
 inline double sum_lo(double r) { return r == 0 ? 0.0 : next_down(r); }
 inline double sum_hi(double r) { return r == 0 ? 0.0 : next_up(r); }

@@ -15,6 +15,13 @@ SceneModel scene_model(const Scene& scene) {
   options.broad_phase = BroadPhase::AllPairs;  // only the state is read: no grid to build
   options.frames_per_second = 0;
   const World<double> world(scene, options);
+  // Traces of other engines carry no angles the referee could follow yet: a scene with rotating
+  // bodies is refused here, as before the rotating referee (which judges PGE's own runs).
+  for (BodyIndex i = 0; i < scene.bodies.size(); ++i)
+    if (world.rotates(i))
+      throw UnsupportedScene(static_cast<int>(i), "body \"" + scene.bodies[i].id +
+                                                      "\": rotates: traces of rotating bodies are not judged yet "
+                                                      "(oracle/README.md, \"Rotation\"); pge check judges PGE's own runs");
   SceneModel m;
   m.state = exact_state(world);
   for (BodyIndex i = 0; i < scene.bodies.size(); ++i) {

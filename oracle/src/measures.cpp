@@ -1,6 +1,7 @@
 // Exact measurements of one engine event: conservation across it, and the gap of its features.
 #include "features.hpp"
 #include "judging.hpp"
+#include "rotating.hpp"
 
 #include <cmath>
 #include <limits>
@@ -15,6 +16,7 @@ ExactVec position_at(const ExactMotion& m, const Dyadic& t) {
 }
 
 Dyadic dot(const ExactVec& a, const ExactVec& b) { return a.x * b.x + a.y * b.y; }
+Dyadic cross(const ExactVec& a, const ExactVec& b) { return a.x * b.y - a.y * b.x; }
 
 // Kinetic energy m v.v / 2 plus the potential of the body's constant acceleration field,
 // -m field.p, at time t on the given motion (a resting body's path has another acceleration
@@ -32,15 +34,31 @@ Conservation measure_conservation(const ExactBody& a, const ExactBody& b, const 
   Conservation c;
   c.both_moving = !a.fixed && !b.fixed;
   c.elastic = a.restitution == Dyadic(1) && b.restitution == Dyadic(1);
+  const auto turns_not = [](const ExactBody& x) { return x.shape != ShapeKind::Circle && !x.rotates; };
+  c.angular = c.both_moving && (a.rotates || b.rotates) && !turns_not(a) && !turns_not(b);
   const struct {
     const ExactBody& body;
     const ExactVec &before, &after;
+    const Dyadic &w_before, &w_after;
     const ExactMotion& motion_after;
-  } sides[2] = {{a, e.va_before, e.va_after, a_after}, {b, e.vb_before, e.vb_after, b_after}};
+  } sides[2] = {{a, e.va_before, e.va_after, e.wa_before, e.wa_after, a_after},
+                {b, e.vb_before, e.vb_after, e.wb_before, e.wb_after, b_after}};
   for (const auto& s : sides) {
     if (s.body.fixed) continue;
     c.energy_change += energy(s.body.mass, s.after, s.body.field_acc, s.motion_after, e.time) -
                        energy(s.body.mass, s.before, s.body.field_acc, s.body.motion, e.time);
+    if (s.body.rotates) {
+      // I omega^2 / 2 (the pivot is the centre of mass: the linear terms above are its own).
+      c.energy_change += s.body.inertia * (s.w_after * s.w_after - s.w_before * s.w_before).scaled(-1);
+      c.kinetic_before += (s.body.inertia * s.w_before * s.w_before).to_double() / 2;
+    }
+    if (c.angular) {
+      const ExactVec p_before = position_at(s.body.motion, e.time), p_after = position_at(s.motion_after, e.time);
+      c.angular_momentum_change += s.body.inertia * (s.w_after - s.w_before) +
+                                   s.body.mass * (cross(p_after, s.after) - cross(p_before, s.before));
+      c.angular_scale += std::abs((s.body.inertia * s.w_before).to_double()) +
+                         std::abs((s.body.mass * cross(p_before, s.before)).to_double());
+    }
     c.momentum_change.x += s.body.mass * (s.after.x - s.before.x);
     c.momentum_change.y += s.body.mass * (s.after.y - s.before.y);
     c.kinetic_before += (s.body.mass * dot(s.before, s.before)).to_double() / 2;
@@ -51,6 +69,7 @@ Conservation measure_conservation(const ExactBody& a, const ExactBody& b, const 
 
 GapMeasure measure_gap(Frame& fr, FeatureCache& features, BodyIndex a, BodyIndex b, const FeaturePair& id,
                        const Dyadic& tau) {
+  if (rotating_pair(fr, a, b)) return rotating_gap(fr, a, b, id, tau);
   for (const Feature& ft : features.of(fr, a, b)) {
     if (!(ft.id == id)) continue;
     const ContactPolys<Dyadic> c = contact_polys<Dyadic>(ft, fr);

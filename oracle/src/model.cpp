@@ -10,6 +10,7 @@ template <class N, class Convert> BodyModel<N> model_of(const ExactBody& b, Conv
   BodyModel<N> m;
   m.shape = b.shape;
   m.fixed = b.fixed;
+  m.rotates = b.rotates;
   for (const ExactVec& v : b.local) m.local.push_back(convert(v));
   for (const ExactVec& v : b.world) m.world.push_back(convert(v));
   return m;
@@ -34,6 +35,14 @@ BodyModel<Dyadic> exact_model(const ExactBody& b) {
 BodyModel<Interval> interval_model(const ExactBody& b) {
   BodyModel<Interval> m = model_of<Interval>(b, interval_vec);
   m.radius = Interval::enclose(b.radius);
+  if (b.rotates) {
+    // The disc the outline sweeps about its pivot: what the spatial filter needs of it.
+    double reach = 0;
+    for (const V2<Interval>& v : m.local) reach = std::max(reach, sqrt_up((square(v.x) + square(v.y)).hi()));
+    m.shape = ShapeKind::Circle;
+    m.radius = Interval(reach);
+    m.local.clear();
+  }
   set_motion(m, b.motion);
   return m;
 }
@@ -44,6 +53,8 @@ void set_motion(BodyModel<Dyadic>& m, const ExactMotion& motion) {
   m.v0 = exact_vec(motion.v0);
   m.acc = exact_vec(motion.acc);
   m.supports = motion.supports;
+  m.theta0 = motion.theta0;
+  m.omega = motion.omega;
 }
 
 void set_motion(BodyModel<Interval>& m, const ExactMotion& motion) {
@@ -52,6 +63,8 @@ void set_motion(BodyModel<Interval>& m, const ExactMotion& motion) {
   m.v0 = interval_vec(motion.v0);
   m.acc = interval_vec(motion.acc);
   m.supports = motion.supports;
+  m.theta0 = Interval::enclose(motion.theta0);
+  m.omega = Interval::enclose(motion.omega);
 }
 
 Frame::Frame(const std::vector<BodyModel<Dyadic>>& exact, const std::vector<BodyModel<Interval>>& interval,

@@ -22,6 +22,11 @@ template <class N> struct BodyModel {
   N t0{};
   V2<N> p0, v0, acc;
   std::array<BodyIndex, 2> supports{kNoBody, kNoBody};  // ExactMotion::supports
+  // A rotating body (ExactBody::rotates). Its exact model keeps its outline about the pivot in
+  // `local` and its angle's path here; its interval model, which only the spatial filter reads,
+  // is the disc it sweeps as it turns (shape Circle, radius its reach about the pivot).
+  bool rotates = false;
+  N theta0{}, omega{};
 
   bool rests_on(BodyIndex j) const { return supports[0] == j || supports[1] == j; }
 };
@@ -32,7 +37,7 @@ void set_motion(BodyModel<Dyadic>& m, const ExactMotion& motion);
 void set_motion(BodyModel<Interval>& m, const ExactMotion& motion);
 
 inline int vertex_count(const BodyModel<Dyadic>& b) {
-  return static_cast<int>(b.fixed ? b.world.size() : b.local.size());
+  return static_cast<int>(b.fixed && !b.rotates ? b.world.size() : b.local.size());
 }
 
 // Vertex k in the body's own frame (local for moving bodies, world for fixed ones): differences

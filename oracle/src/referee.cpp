@@ -1,5 +1,6 @@
 #include "judging.hpp"
 #include "pge/oracle.hpp"
+#include "rotating.hpp"
 #include "search.hpp"
 
 #include <algorithm>
@@ -12,6 +13,8 @@ using namespace detail;
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+long long abs_ulps(long long u) { return u < 0 ? -u : u; }
 
 struct Found {
   BodyPair pair;
@@ -144,22 +147,41 @@ Judgement Referee::judge(const ExactEvent& e, const ExactMotion& a_after, const 
   Frame fr = m.frame();
   Judgement j;
 
-  const std::optional<PairResult> own = m.own_contact(fr, e);
-  if (own) {
-    j.pair_time = ExactTime(s.now, own->tau);
-    j.pair_features = own->features;
-    j.features_match = std::find(own->features.begin(), own->features.end(),
-                                 FeaturePair{e.contact, e.feature_a, e.feature_b}) != own->features.end();
-    j.ulps = ulps_from(e.time, *j.pair_time, s.format);
-    j.relative_error = relative_error(e.time, *j.pair_time);
+  try {
+    const std::optional<PairResult> own = m.own_contact(fr, e);
+    if (own) {
+      j.pair_time = ExactTime(s.now, own->tau);
+      j.pair_features = own->features;
+      j.features_match = std::find(own->features.begin(), own->features.end(),
+                                   FeaturePair{e.contact, e.feature_a, e.feature_b}) != own->features.end();
+      j.ulps = ulps_from(e.time, *j.pair_time, s.format);
+      j.relative_error = relative_error(e.time, *j.pair_time);
+    }
+    const Dyadic tau_hi = m.window_end(e, j.pair_time);
+    std::vector<Found> found;
+    if (own && compare(*own->tau, tau_hi) <= 0) found.push_back({{e.a, e.b}, *own});
+    const NextEvent earliest = m.search(fr, tau_hi, {e.a, e.b}, std::move(found));
+    j.earliest_time = earliest.time;
+    j.earliest = earliest.pairs;
+    j.verdict = decide(j.pair_time, earliest, e.time, s.format, m.options.agree_ulps);
+    // An event at an exact graze of a rotating pair (a tangency: the normal speed is exactly
+    // zero there, so an engine's approach test and impulse are rounding, zero or an eps): not a
+    // contact to agree with, nor a phantom of a pair far apart. Undecided, with the reason.
+    if (j.verdict == Verdict::Phantom && rotating_pair(fr, e.a, e.b))
+      if (const std::optional<Dyadic> g = rotating_graze(fr, e.a, e.b, m.time_to_horizon()))
+        if (abs_ulps(ulps_from(e.time, ExactTime(s.now, root_at(*g)), s.format)) <= m.options.agree_ulps) {
+          j.verdict = Verdict::Undecided;
+          j.undecided_reason = "a graze at t = " + (s.now + *g).to_string() +
+                               " (a tangency, no contact): the engine's event is within rounding of it";
+          ++m.stats.undecided;
+        }
+  } catch (const UndecidedTime& u) {
+    // Only a rotating pair's transcendental contact throws this: reported, never agreement.
+    j = Judgement{};
+    j.verdict = Verdict::Undecided;
+    j.undecided_reason = u.what();
+    ++m.stats.undecided;
   }
-  const Dyadic tau_hi = m.window_end(e, j.pair_time);
-  std::vector<Found> found;
-  if (own && compare(*own->tau, tau_hi) <= 0) found.push_back({{e.a, e.b}, *own});
-  const NextEvent earliest = m.search(fr, tau_hi, {e.a, e.b}, std::move(found));
-  j.earliest_time = earliest.time;
-  j.earliest = earliest.pairs;
-  j.verdict = decide(j.pair_time, earliest, e.time, s.format, m.options.agree_ulps);
 
   j.conservation = measure_conservation(s.bodies[e.a], s.bodies[e.b], e, a_after, b_after);
   const GapMeasure g = measure_gap(fr, m.features, e.a, e.b, {e.contact, e.feature_a, e.feature_b}, e.time - s.now);
@@ -180,8 +202,15 @@ EndJudgement Referee::take_motion(BodyIndex i, const ExactMotion& motion, const 
   const Dyadic tau = time - m.state.now;
   if (tau.sign() > 0) {
     Frame fr = m.frame();
-    out.next = m.search(fr, tau, {kNoBody, kNoBody}, {});
-    out.miss = out.next.time && out.next.time->compare(time) < 0;
+    try {
+      out.next = m.search(fr, tau, {kNoBody, kNoBody}, {});
+      out.miss = out.next.time && out.next.time->compare(time) < 0;
+    } catch (const UndecidedTime& u) {
+      out = EndJudgement{};
+      out.undecided = true;
+      out.undecided_reason = u.what();
+      ++m.stats.undecided;
+    }
     if (out.miss) {
       ++m.stats.misses_between_events;
       m.motion_misses.push_back({i, time, out.next});
@@ -203,7 +232,14 @@ NextEvent Referee::next_event() {
 
 EndJudgement Referee::judge_end() {
   EndJudgement end;
-  end.next = next_event();
+  try {
+    end.next = next_event();
+  } catch (const UndecidedTime& u) {
+    end.undecided = true;
+    end.undecided_reason = u.what();
+    ++impl_->stats.undecided;
+    return end;
+  }
   end.miss = end.next.time.has_value();
   return end;
 }
@@ -221,6 +257,7 @@ std::string_view verdict_name(Verdict v) {
     case Verdict::Misorder: return "misorder";
     case Verdict::Miss: return "miss";
     case Verdict::Phantom: return "phantom";
+    case Verdict::Undecided: return "undecided";
   }
   return "?";
 }

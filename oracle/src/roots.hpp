@@ -5,6 +5,7 @@
 #include "pge/oracle_exact.hpp"
 #include "root_enclosure.hpp"
 
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -20,6 +21,30 @@ struct RootWithMultiplicity {
   RootHandle root;
   int multiplicity = 1;
 };
+
+// A simple root of a function that is not a polynomial: a contact function of a rotating body,
+// which holds sin and cos of its angle (rotating.cpp). Known by lo < root < hi with the function
+// of opposite non-zero signs at the ends (or a dyadic point, lo = hi), refined in place by exact
+// sign decisions at dyadic points. A sign that cannot be decided within the precision cap throws
+// UndecidedTime (pge/oracle_time.hpp).
+class TranscendentalRoot {
+ public:
+  virtual ~TranscendentalRoot() = default;
+  virtual int compare(const Dyadic& x) const = 0;  // sign of (root - x)
+  virtual int compare(const mpq_class& x) const = 0;
+  virtual void narrow(long bits) const = 0;  // until hi - lo <= 2^-bits
+  virtual Dyadic lo() const = 0;
+  virtual Dyadic hi() const = 0;
+};
+RootHandle transcendental_root(std::shared_ptr<const TranscendentalRoot> t);
+const TranscendentalRoot* transcendental_of(const RealRoot& r);  // null for an algebraic root
+
+// Two roots of which one (at least) is transcendental and which agree to this many bits below
+// the point are taken as equal: they cannot be told apart by brackets (a true tie, such as the
+// two mirror-image corners of a symmetric scene, never can), and 2^-256 s is far below every
+// format's resolution. Counted (tied_within_cap()).
+inline constexpr long kTranscendentalTieBits = 256;
+std::uint64_t tied_within_cap();
 
 // Every real root of p (not the zero polynomial), ascending, with its multiplicity.
 std::vector<RootWithMultiplicity> real_roots(const IntPoly& p);

@@ -12,6 +12,7 @@
 #include <CGAL/Gmpq.h>
 #include <CGAL/Gmpz.h>
 
+#include <atomic>
 #include <iterator>
 #include <optional>
 
@@ -31,11 +32,14 @@ class RealRoot {
  public:
   explicit RealRoot(Algebraic a) : cgal_(std::move(a)) {}
   explicit RealRoot(RootEnclosure e) : enclosure_(std::move(e)), tried_(true) {}
+  explicit RealRoot(std::shared_ptr<const TranscendentalRoot> t) : transcendental_(std::move(t)), tried_(true) {}
 
   const Algebraic& cgal() const;
   RootEnclosure* enclosure() const;
+  const TranscendentalRoot* transcendental() const { return transcendental_.get(); }
 
  private:
+  std::shared_ptr<const TranscendentalRoot> transcendental_;  // not algebraic: neither of the others
   mutable std::optional<Algebraic> cgal_;  // CGAL refines its interval in place (a shared, mutable representation)
   mutable std::optional<RootEnclosure> enclosure_;
   mutable bool tried_ = false;  // the enclosure was made, or cannot be made
@@ -126,7 +130,40 @@ std::vector<RootWithMultiplicity> real_roots(const IntPoly& p) {
   return out;
 }
 
+namespace {
+
+std::atomic<std::uint64_t> g_tied_within_cap{0};
+
+// Two roots, one transcendental at least: brackets narrowed until they are apart, or equal
+// within 2^-kTranscendentalTieBits.
+int compare_by_brackets(const RealRoot& a, const RealRoot& b) {
+  for (long bits = 64;; bits *= 2) {
+    const bool last = bits >= kTranscendentalTieBits;
+    const long k = std::min(bits, kTranscendentalTieBits);
+    const auto [al, ah] = bracket(a, k);
+    const auto [bl, bh] = bracket(b, k);
+    if (ah < bl) return -1;
+    if (bh < al) return 1;
+    if (al == ah && bl == bh && al == bl) return 0;
+    if (last) {
+      ++g_tied_within_cap;
+      return 0;
+    }
+  }
+}
+
+}  // namespace
+
+RootHandle transcendental_root(std::shared_ptr<const TranscendentalRoot> t) {
+  return std::make_shared<const RealRoot>(std::move(t));
+}
+
+const TranscendentalRoot* transcendental_of(const RealRoot& r) { return r.transcendental(); }
+
+std::uint64_t tied_within_cap() { return g_tied_within_cap.load(); }
+
 int sign_at(const IntPoly& p, const RealRoot& r) {
+  if (r.transcendental()) throw std::logic_error("oracle: a polynomial's sign at a transcendental root");
   if (RootEnclosure* e = r.enclosure())
     if (const std::optional<int> s = e->sign_of(p)) return *s;
   return to_int(kernel().sign_at_1_object()(to_cgal(p), r.cgal()));
@@ -134,6 +171,7 @@ int sign_at(const IntPoly& p, const RealRoot& r) {
 
 int compare(const RealRoot& a, const RealRoot& b) {
   if (&a == &b) return 0;
+  if (a.transcendental() || b.transcendental()) return compare_by_brackets(a, b);
   RootEnclosure* ea = a.enclosure();
   RootEnclosure* eb = b.enclosure();
   if (ea && eb)
@@ -142,11 +180,13 @@ int compare(const RealRoot& a, const RealRoot& b) {
 }
 
 int compare(const RealRoot& a, const Dyadic& x) {
+  if (const TranscendentalRoot* t = a.transcendental()) return t->compare(x);
   if (RootEnclosure* e = a.enclosure()) return e->compare(x);
   return to_int(kernel().compare_1_object()(a.cgal(), to_bound(x)));
 }
 
 int compare(const RealRoot& a, const mpq_class& x) {
+  if (const TranscendentalRoot* t = a.transcendental()) return t->compare(x);
   if (RootEnclosure* e = a.enclosure()) return e->compare(x);
   return to_int(kernel().compare_1_object()(a.cgal(), Bound(x.get_mpq_t())));
 }
@@ -154,6 +194,10 @@ int compare(const RealRoot& a, const mpq_class& x) {
 RootHandle root_at(const Dyadic& x) { return std::make_shared<const RealRoot>(RootEnclosure::point(x)); }
 
 std::pair<mpq_class, mpq_class> bracket(const RealRoot& r, long bits) {
+  if (const TranscendentalRoot* t = r.transcendental()) {
+    t->narrow(bits);
+    return {t->lo().to_mpq(), t->hi().to_mpq()};
+  }
   if (RootEnclosure* e = r.enclosure()) {
     e->narrow(bits);
     return {e->lo().to_mpq(), e->hi().to_mpq()};
@@ -163,10 +207,16 @@ std::pair<mpq_class, mpq_class> bracket(const RealRoot& r, long bits) {
 }
 
 void refine_near(const RealRoot& r, const Dyadic& x, long bits) {
+  if (r.transcendental()) return;  // a hint only: its own narrowing is Newton's already
   if (RootEnclosure* e = r.enclosure()) e->newton_from(x, bits);
 }
 
 bool rational_value(const RealRoot& r, mpq_class& value) {
+  if (const TranscendentalRoot* t = r.transcendental()) {
+    if (t->lo() != t->hi()) return false;
+    value = t->lo().to_mpq();
+    return true;
+  }
   if (RootEnclosure* e = r.enclosure(); e && e->is_point()) {
     value = e->lo().to_mpq();
     return true;

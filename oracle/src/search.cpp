@@ -2,13 +2,15 @@
 
 #include "corner.hpp"
 #include "overlap_rule.hpp"
+#include "rotating.hpp"
 
 #include <algorithm>
 
 namespace pge::oracle::detail {
 namespace {
 
-bool any_feature_may_touch(Frame& fr, FeatureCache& features, BodyPair p, const Interval& tau) {
+bool any_feature_may_touch(Frame& fr, FeatureCache& features, BodyPair p, const Interval& tau, const Dyadic& tau_hi) {
+  if (rotating_pair(fr, p.first, p.second)) return rotating_may_touch(fr, p.first, p.second, tau_hi);
   for (const Feature& ft : features.of(fr, p.first, p.second))
     if (may_touch(contact_polys<Interval>(ft, fr), tau)) return true;
   return false;
@@ -18,6 +20,7 @@ bool any_feature_may_touch(Frame& fr, FeatureCache& features, BodyPair p, const 
 
 std::optional<PairResult> pair_contact(Frame& fr, FeatureCache& features, BodyIndex a, BodyIndex b,
                                        const Dyadic& tau_hi, const Interval& window, bool filter, SearchCounters& n) {
+  if (rotating_pair(fr, a, b)) return rotating_pair_contact(fr, a, b, tau_hi, n);
   std::optional<PairResult> best;
   for (const Feature& ft : features.of(fr, a, b)) {
     if (filter && !may_touch(contact_polys<Interval>(ft, fr), window)) continue;
@@ -54,12 +57,12 @@ std::optional<PairResult> pair_contact(Frame& fr, FeatureCache& features, BodyIn
 static bool flush_with_support(const Frame& fr, BodyIndex i, BodyIndex j) {
   const BodyModel<Dyadic>& m = fr.exact_body(i);
   const BodyModel<Dyadic>& b = fr.exact_body(j);
-  if (m.fixed || !b.fixed || b.shape == ShapeKind::Circle) return false;
+  if (m.fixed || !b.fixed || b.shape == ShapeKind::Circle || b.rotates) return false;
   const V2<Dyadic>& w = !m.acc.x.is_zero() || !m.acc.y.is_zero() ? m.acc : m.v0;
   for (const BodyIndex s : m.supports) {
     if (s == kNoBody || s == j) continue;
     const BodyModel<Dyadic>& f = fr.exact_body(s);
-    if (f.shape == ShapeKind::Circle) continue;
+    if (f.shape == ShapeKind::Circle || f.rotates) continue;
     // The faces i is in front of, and of those the nearest to w's direction: the largest
     // dot(w, e)^2 / |e|^2, compared cross-multiplied.
     std::vector<int> faces;
@@ -120,7 +123,7 @@ std::vector<BodyPair> candidate_pairs(Frame& fr, FeatureCache& features, const D
   const Interval tau(0.0, Interval::enclose(tau_hi).hi());
   std::vector<BodyPair> out;
   for (const BodyPair& p : pairs)
-    if (p != skip && !resting_pair(fr, p.first, p.second) && (!filter || any_feature_may_touch(fr, features, p, tau)))
+    if (p != skip && !resting_pair(fr, p.first, p.second) && (!filter || any_feature_may_touch(fr, features, p, tau, tau_hi)))
       out.push_back(p);
   if (filter) n.pairs_filtered += examined - out.size();
   return out;

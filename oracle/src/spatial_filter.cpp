@@ -11,9 +11,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Interval enclose_time(const Dyadic& t) { return Interval::enclose(t); }
 
-// Upper bound of sqrt(x) for x >= 0 (sqrt is correctly rounded).
-double sqrt_up(double x) { return x <= 0 ? 0.0 : next_up(std::sqrt(x)); }
-
 double norm_up(double x, double y) { return sqrt_up((square(Interval(x)) + square(Interval(y))).hi()); }
 
 double mid(const Interval& v) { return 0.5 * v.lo() + 0.5 * v.hi(); }

@@ -11,7 +11,7 @@ trap 'rm -rf "$out"' EXIT
 count=$(find "$scenes" -name '*.json' | wc -l)
 summaries=$(grep -c '^scene ' "$out/stdout")
 [[ $summaries -eq $count ]] || { echo "FAIL: $summaries summaries for $count scenes"; exit 1; }
-verdict_lines=$(grep -c '^  verdicts: agree [0-9]*, tie [0-9]*, time_error [0-9]*, misorder [0-9]*, miss 0, phantom 0$' "$out/stdout")
+verdict_lines=$(grep -c '^  verdicts: agree [0-9]*, tie [0-9]*, time_error [0-9]*, misorder [0-9]*, miss 0, phantom 0, undecided 0$' "$out/stdout")
 [[ $verdict_lines -eq $count ]] || { cat "$out/stdout"; echo "FAIL: $verdict_lines scenes without miss or phantom of $count"; exit 1; }
 grep -q '"format":"pge-check/1"' "$out/check.json" || { echo "FAIL: no pge-check/1 JSON"; exit 1; }
 events=$(grep -c '"verdict":' "$out/check.json" || true)

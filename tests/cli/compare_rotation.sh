@@ -19,7 +19,7 @@ fail() { echo "compare_rotation.sh: $*" >&2; exit 1; }
 grep -q '^| pge | pge certified/double | [0-9.]* | [-0-9.e]* | [-0-9.e]* | [-0-9.e]* | 0 | 0 | - | - | - | - |$' "$tmp/out.md" ||
   fail "pge certified row: not run, tunnelled, or not the reference"
 grep -q 'not run' "$tmp/out.md" && fail "a setting did not run: $(grep 'not run' "$tmp/out.md")"
-grep -q '^Peer rows: - (not judged: the scene has rotating bodies, which the exact referee does not judge yet' "$tmp/out.md" ||
+grep -q '^Peer rows: - (not judged: the scene has rotating bodies, and the referee judges their contacts in PGE' "$tmp/out.md" ||
   fail "no note that the peers' contacts are not judged"
 grep -q 'refused' "$tmp/err.txt" && fail "the referee was asked: $(cat "$tmp/err.txt")"
 peers=$(installed_peers "$tmp/out.md" "$tmp/err.txt") || exit 1

@@ -44,7 +44,7 @@ struct TraceContact {
 // in that order; `contacts` the pairs the engine reported during the step, each once. In a scene
 // with rotation `turns` holds each of those bodies' turn at `t`, in the same order (positions
 // are then reference points, turned with the body, and velocities the centre of mass's);
-// otherwise it is empty. The referee does not judge rotating scenes yet (docs/rotation.md).
+// otherwise it is empty. The referee does not judge traces of rotating scenes yet (pge check judges PGE's own runs).
 struct TraceStep {
   double t = 0;
   std::vector<TraceState> bodies;

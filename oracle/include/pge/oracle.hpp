@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -71,10 +72,13 @@ struct NextEvent {
 //              kAgreeUlps: the engine skipped it.
 //   Phantom:   the engine's pair does not touch at the engine's time (its exact contact is more
 //              than kAgreeUlps later, or never before the horizon) and nothing was skipped.
-enum class Verdict : std::uint8_t { Agree, Tie, TimeError, Misorder, Miss, Phantom };
-inline constexpr int kVerdictCount = 6;
+//   Undecided: a pair with a rotating body whose contact the referee could not decide within its
+//              precision cap (a tangency, a contact at an edge's very end, a sign at the cap:
+//              UndecidedTime); counted apart, neither agreement nor failure.
+enum class Verdict : std::uint8_t { Agree, Tie, TimeError, Misorder, Miss, Phantom, Undecided };
+inline constexpr int kVerdictCount = 7;
 // The verdict's name as `pge check --json` writes it: "agree", "tie", "time_error", "misorder",
-// "miss", "phantom" ("?" outside the enum). Never throws.
+// "miss", "phantom", "undecided" ("?" outside the enum). Never throws.
 std::string_view verdict_name(Verdict v);
 // Miss and Phantom fail a run (`pge check` exits 1); the others do not.
 inline bool is_failure(Verdict v) { return v == Verdict::Miss || v == Verdict::Phantom; }
@@ -89,6 +93,14 @@ struct Conservation {
   ExactVec momentum_change;  // sum of m (v_after - v_before) over the moving bodies
   double kinetic_before = 0;   // the pair's kinetic energy before (scale of relative figures)
   double momentum_scale = 0;   // sum of m |v_before| (scale of relative figures)
+  // With a rotating body: kinetic energy includes I omega^2 / 2 (exact: omega and I are the
+  // engine's doubles, and the pivot, the centre of mass, moves on its polynomial path). Angular
+  // momentum about the origin, I omega + m p x v summed over the moving bodies, is conserved when
+  // both move and neither is an outline that does not turn (whose constraint absorbs torque):
+  // then `angular` is set and the change is exact, with its scale sum |I omega| + m |p x v|.
+  bool angular = false;
+  Dyadic angular_momentum_change;
+  double angular_scale = 0;
 };
 
 // The referee's judgement of one engine event (Referee::judge). Times are exact, seconds.
@@ -112,11 +124,14 @@ struct Judgement {
   // not a feature pair the oracle knows.
   double gap = 0;
   double contact_distance = 0;
+  std::string undecided_reason;  // Verdict::Undecided: what could not be decided (UndecidedTime)
 };
 
 // At the end of a run, or at a motion change (Referee::judge_end, Referee::take_motion).
 struct EndJudgement {
   bool miss = false;  // a contact the engine never processed, before the horizon
+  bool undecided = false;  // the search met a rotating contact it could not decide (no verdict)
+  std::string undecided_reason;
   NextEvent next;     // the exact next contact the referee found (empty: none before the horizon)
 };
 
@@ -149,6 +164,9 @@ struct RefereeStats {
   // Contacts the engine passed over before a motion change that was not a collision (a body
   // sliding off a face, set_velocity): misses found by take_motion.
   std::uint64_t misses_between_events = 0;
+  // Searches that met a rotating contact they could not decide within the precision cap
+  // (UndecidedTime): judge() verdicts Undecided, and judge_end / take_motion without a verdict.
+  std::uint64_t undecided = 0;
 };
 
 // Follows one engine run from its initial state. Every change of the engine's state must reach
@@ -177,7 +195,8 @@ class Referee {
   // engine did not process is a miss: returned, and counted in stats().misses_between_events.
   // Throws std::invalid_argument for a body index out of range.
   EndJudgement take_motion(BodyIndex i, const ExactMotion& motion, const Dyadic& time);
-  // The exact next event from the current state (state() is not changed).
+  // The exact next event from the current state (state() is not changed). Throws UndecidedTime
+  // when a rotating pair's contact cannot be decided within the precision cap.
   NextEvent next_event();
 
   const ExactState& state() const;    // the state as the referee follows it now
@@ -192,8 +211,9 @@ class Referee {
 
 // The exact next event of a state: the earliest approaching contact after state.now and not
 // after state.horizon (DESIGN.md, "What an event is"), every pair touching then. Exact: the time
-// refines to any width (ExactTime::bracket, decimal). Throws nothing for a state exact_state
-// made (std::logic_error only for a referee bug).
+// refines to any width (ExactTime::bracket, decimal). Throws UndecidedTime for a rotating contact
+// it cannot decide within the precision cap, nothing else for a state exact_state made
+// (std::logic_error only for a referee bug).
 NextEvent next_event(const ExactState& state, const RefereeOptions& options = {});
 
 // Has `referee` judge every collision of `world` from now on (installs the world's collision

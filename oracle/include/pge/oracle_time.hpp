@@ -6,6 +6,7 @@
 #include "pge/oracle_exact.hpp"
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -14,6 +15,14 @@ namespace pge::oracle {
 namespace detail {
 class RealRoot;
 }
+
+// A question about a time of a rotating body's contact (a transcendental number) that the
+// referee cannot decide within its precision cap: the sign of the contact function at a point
+// stays unresolved at the highest precision tried (oracle/README.md, "Rotation"). A judgement
+// that meets one is reported as undecided, never as agreement.
+struct UndecidedTime : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 class ExactTime {
  public:

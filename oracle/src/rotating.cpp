@@ -1,0 +1,663 @@
+// Certified contacts of rotating bodies (rotating.hpp). The referee's own functions, from the
+// stored paths: a rotating body's vertex k is c(tau) + R(theta + omega tau) r_k with c its pivot's
+// quadratic path, every number the engine's double read exactly. They are evaluated with their
+// first two derivatives (jets) in Arb's balls, which enclose sin and cos rigorously.
+//
+// A feature pair's earliest contact in [0, H] is the first root where its function f crosses
+// from positive to negative with the contact point on the feature (the projection strictly
+// inside the edge). The search bisects [0, H] left first. On an interval I with midpoint m and
+// half-width h, f(I) is enclosed by f(m) + f'(m) [-h, h] + f''(I) [0, h^2] / 2 (met with the
+// direct enclosure) and f'(I) by f'(m) + f''(I) [-h, h]: second-order tight, so an interval is
+// dropped as soon as f > 0 on it, f' > 0 on it (a crossing there could only be upward), f < 0 on
+// it away from tau = 0, or the point never projects onto the edge. Where f' < 0 on I, f has at
+// most one root there, decided by the exact signs of f at I's ends (Arb at rising precision until
+// the ball excludes zero; exact dyadic inputs), and the projection is decided at the root by
+// narrowing it. An interval whose f and f' both hold zero below 2^-kRotatingTangencyBits is a
+// tangency this search cannot resolve: UndecidedTime. Every dropped interval is dropped by a
+// rigorous enclosure, so no contact is missed.
+//
+// Work is bounded: a near miss of depth d at a closest approach with curvature f'' is resolved
+// once h^2 f'' / 2 < d, about log2(period / sqrt(d / f'')) levels per turn, so a body turning
+// N times before its contact costs O(N log(1/d)) interval tests, never a step per turn of fixed
+// size (the 1,000-turn near-miss test in tests/test_oracle_rotation.cpp).
+#include "rotating.hpp"
+
+#include "ball.hpp"
+#include "roots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace pge::oracle::detail {
+namespace {
+
+// A function's value and its first two derivatives in tau, enclosed.
+struct Jet {
+  Ball v, d, dd;
+};
+
+Jet constant(const Ball& c) { return {c, Ball(), Ball()}; }
+Jet operator+(const Jet& a, const Jet& b) { return {a.v + b.v, a.d + b.d, a.dd + b.dd}; }
+Jet operator-(const Jet& a, const Jet& b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+Jet operator*(const Jet& a, const Jet& b) {
+  return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + (a.d * b.d).scaled(1) + a.v * b.dd};
+}
+Jet negate(const Jet& a) { return {-a.v, -a.d, -a.dd}; }
+
+struct VJ {
+  Jet x, y;
+};
+VJ operator-(const VJ& a, const VJ& b) { return {a.x - b.x, a.y - b.y}; }
+Jet cross(const VJ& a, const VJ& b) { return a.x * b.y - a.y * b.x; }
+Jet dot(const VJ& a, const VJ& b) { return a.x * b.x + a.y * b.y; }
+
+// One body's kinematics from the search's now (tau = 0), exact.
+struct Kin {
+  ShapeKind shape = ShapeKind::Circle;
+  bool rotates = false;
+  Ball radius;            // circles
+  Ball c[3][2];           // centre (pivot, reference point): c0 + c1 tau + c2 tau^2, x and y
+  std::vector<std::array<Ball, 2>> verts;  // about the centre (rotating: at angle 0)
+  Ball theta, omega;      // angle at tau = 0 and its rate
+  Dyadic reach2;          // the largest squared distance of a point of the shape from the centre
+};
+
+int edge_count(const Kin& k) {
+  if (k.shape == ShapeKind::Segment) return 1;
+  return static_cast<int>(k.verts.size());
+}
+
+struct Feat {
+  FeaturePair id;
+  int pb = 0, pv = -1;  // the point: body (0 = a, 1 = b) and vertex (-1: a circle's centre)
+  bool to_edge = false;
+  int eb = 0, ek = 0;   // the edge from vertex ek of body eb to the next, or (point to point) its vertex ek
+  int sigma = 1;        // the side of the edge measured from (+1: along (e.y, -e.x))
+  Dyadic len2;          // |e|^2
+};
+
+struct PairKin {
+  Kin k[2];
+  std::vector<Feat> feats;
+};
+
+Kin kin_of(Frame& fr, BodyIndex i) {
+  const BodyModel<Dyadic>& m = fr.exact_body(i);
+  Kin k;
+  k.shape = m.shape;
+  k.rotates = m.rotates;
+  k.radius = Ball(m.radius);
+  const PointPath<Dyadic>& p = reference_of<Dyadic>(fr, i);
+  for (int j = 0; j < 3; ++j) {
+    k.c[j][0] = j <= p.x.deg ? Ball(p.x.c[j]) : Ball();
+    k.c[j][1] = j <= p.y.deg ? Ball(p.y.c[j]) : Ball();
+  }
+  // A fixed outline that does not turn is, against a turning body, its position plus its local
+  // vertices, the exact sum (the engine's rotating predictor, World::Impl::rotating_shape, builds
+  // it so; its rounded world vertices serve the translating pairs, which never meet this code).
+  const std::vector<V2<Dyadic>>& vs = m.local;
+  Dyadic r2 = m.radius * m.radius;
+  for (const V2<Dyadic>& v : vs) {
+    k.verts.push_back({Ball(v.x), Ball(v.y)});
+    r2 = std::max(r2, v.x * v.x + v.y * v.y);
+  }
+  k.reach2 = r2;
+  k.theta = Ball(m.theta0 + m.omega * (fr.now() - m.t0));
+  k.omega = Ball(m.omega);
+  return k;
+}
+
+std::vector<Feat> features_of(const PairKin& pk) {
+  std::vector<Feat> out;
+  const auto sigmas = [](const Kin& k) { return k.shape == ShapeKind::Segment ? std::vector<int>{1, -1} : std::vector<int>{1}; };
+  const auto edge_len2 = [](const Kin& k, int l) {
+    const auto& p = k.verts[static_cast<std::size_t>(l)];
+    const auto& q = k.verts[static_cast<std::size_t>((l + 1) % static_cast<int>(k.verts.size()))];
+    const Dyadic dx = q[0].mid() - p[0].mid(), dy = q[1].mid() - p[1].mid();
+    return dx * dx + dy * dy;
+  };
+  const auto index = [](int k) { return static_cast<std::uint16_t>(k); };
+  for (int x = 0; x < 2; ++x) {
+    const int y = 1 - x;
+    const Kin& kx = pk.k[x];
+    const Kin& ky = pk.k[y];
+    if (ky.shape == ShapeKind::Circle) continue;  // from the circle's side (two circles never turn)
+    // The circle's centre (-1) or every vertex, against every edge of the other body.
+    std::vector<int> points;
+    if (kx.shape == ShapeKind::Circle) points.push_back(-1);
+    for (int v = 0; kx.shape != ShapeKind::Circle && v < static_cast<int>(kx.verts.size()); ++v) points.push_back(v);
+    for (int v : points)
+      for (int l = 0; l < edge_count(ky); ++l)
+        for (int s : sigmas(ky)) {
+          Feat f;
+          if (v < 0)
+            f.id = x == 0 ? FeaturePair{ContactKind::CircleEdge, 0, index(l)} : FeaturePair{ContactKind::CircleEdge, index(l), 0};
+          else
+            f.id = x == 0 ? FeaturePair{ContactKind::VertexEdge, index(v), index(l)}
+                          : FeaturePair{ContactKind::EdgeVertex, index(l), index(v)};
+          f.pb = x;
+          f.pv = v;
+          f.to_edge = true;
+          f.eb = y;
+          f.ek = l;
+          f.sigma = s;
+          f.len2 = edge_len2(ky, l);
+          out.push_back(f);
+        }
+    if (kx.shape != ShapeKind::Circle) continue;
+    for (int v = 0; v < static_cast<int>(ky.verts.size()); ++v) {  // the circle against every vertex
+      Feat f;
+      f.id = x == 0 ? FeaturePair{ContactKind::CircleVertex, 0, index(v)} : FeaturePair{ContactKind::CircleVertex, index(v), 0};
+      f.pb = x;
+      f.eb = y;
+      f.ek = v;
+      out.push_back(f);
+    }
+  }
+  return out;
+}
+
+std::shared_ptr<PairKin> pair_kin(Frame& fr, BodyIndex a, BodyIndex b) {
+  auto pk = std::make_shared<PairKin>();
+  pk->k[0] = kin_of(fr, a);
+  pk->k[1] = kin_of(fr, b);
+  pk->feats = features_of(*pk);
+  return pk;
+}
+
+// A body's points at tau = T (a point or an interval), as jets.
+class Pose {
+ public:
+  Pose(const Kin& k, const Ball& T) : k_(k) {
+    const Ball T2 = T * T;
+    for (int i = 0; i < 2; ++i) {
+      Jet& j = i == 0 ? centre_.x : centre_.y;
+      j.v = k.c[0][i] + k.c[1][i] * T + k.c[2][i] * T2;
+      j.d = k.c[1][i] + (k.c[2][i] * T).scaled(1);
+      j.dd = k.c[2][i].scaled(1);
+    }
+    if (k.rotates) {
+      sin_cos(s_, c_, k.theta + k.omega * T);
+      w2_ = k.omega * k.omega;
+    }
+  }
+
+  const VJ& centre() const { return centre_; }
+
+  VJ vertex(int v) const {
+    const auto& r = k_.verts[static_cast<std::size_t>(v)];
+    if (!k_.rotates) return {centre_.x + constant(r[0]), centre_.y + constant(r[1])};
+    const Ball rx = c_ * r[0] - s_ * r[1];
+    const Ball ry = s_ * r[0] + c_ * r[1];
+    return {{centre_.x.v + rx, centre_.x.d - k_.omega * ry, centre_.x.dd - w2_ * rx},
+            {centre_.y.v + ry, centre_.y.d + k_.omega * rx, centre_.y.dd - w2_ * ry}};
+  }
+
+ private:
+  const Kin& k_;
+  VJ centre_;
+  Ball s_, c_, w2_;
+};
+
+// A feature's contact function f and projection u = (P - A).e, as jets.
+struct Values {
+  Jet f, u;
+};
+
+class Posed {
+ public:
+  Posed(const PairKin& pk, const Ball& T) : pk_(pk), p_{Pose(pk.k[0], T), Pose(pk.k[1], T)} {
+    for (int i = 0; i < 2; ++i) verts_[i].resize(pk.k[i].verts.size());
+  }
+
+  Values values(const Feat& ft) {
+    Values out;
+    const VJ p = ft.pv < 0 ? p_[ft.pb].centre() : vertex(ft.pb, ft.pv);
+    const Kin& eb = pk_.k[ft.eb];
+    if (!ft.to_edge) {
+      const VJ d = vertex(ft.eb, ft.ek) - p;
+      out.f = dot(d, d) - constant(pk_.k[ft.pb].radius * pk_.k[ft.pb].radius);
+      return out;
+    }
+    const int n = static_cast<int>(eb.verts.size());
+    const VJ& A = vertex(ft.eb, ft.ek);
+    const VJ e = vertex(ft.eb, (ft.ek + 1) % n) - A;
+    const VJ d = p - A;
+    const Jet s = cross(d, e);
+    out.f = ft.sigma > 0 ? s : negate(s);
+    if (ft.pv < 0) out.f = out.f - constant(pk_.k[ft.pb].radius * sqrt(Ball(ft.len2)));
+    out.u = dot(d, e);
+    return out;
+  }
+
+  const VJ& vertex(int body, int v) {
+    auto& slot = verts_[body][static_cast<std::size_t>(v)];
+    if (!slot) slot = p_[body].vertex(v);
+    return *slot;
+  }
+  const Pose& pose(int body) const { return p_[body]; }
+
+ private:
+  const PairKin& pk_;
+  Pose p_[2];
+  std::vector<std::optional<VJ>> verts_[2];
+};
+
+std::string undecided_text(const Feat& ft, const char* what) {
+  return std::string("rotating contact undecided: ") + what + " (" + std::string(contact_kind_name(ft.id.contact)) + " " +
+         std::to_string(ft.id.feature_a) + "/" + std::to_string(ft.id.feature_b) + ")";
+}
+
+enum class Of { F, DF, DDF, U };  // f, f', f'', or the projection u - shift
+
+// The sign of f (f', f'', u - shift) at an exact point, at rising precision.
+int sign_at_point(const PairKin& pk, const Feat& ft, const Ball& T_exact_or_tight, Of what = Of::F,
+                  const Dyadic& shift = Dyadic()) {
+  for (slong prec = 96; prec <= kRotatingMaxPrecision; prec *= 2) {
+    const Precision guard(prec);
+    Posed ps(pk, T_exact_or_tight);
+    const Values v = ps.values(ft);
+    const int s = what == Of::U     ? (v.u.v - Ball(shift)).sign()
+                  : what == Of::DF  ? v.f.d.sign()
+                  : what == Of::DDF ? v.f.dd.sign()
+                                    : v.f.v.sign();
+    if (s != 2) return s;
+  }
+  throw UndecidedTime(undecided_text(ft, "a sign at the precision cap"));
+}
+
+Dyadic half(const Dyadic& x) { return x.scaled(-1); }
+
+// A simple downward root of a feature's contact function: f(lo) > 0 > f(hi), or a point.
+class RotatingRoot final : public TranscendentalRoot {
+ public:
+  RotatingRoot(std::shared_ptr<const PairKin> pk, int feat, Dyadic lo, Dyadic hi)
+      : pk_(std::move(pk)), feat_(feat), lo_(std::move(lo)), hi_(std::move(hi)) {}
+
+  const Feat& feature() const { return pk_->feats[static_cast<std::size_t>(feat_)]; }
+  const PairKin& pair() const { return *pk_; }
+
+  int compare(const Dyadic& x) const override {
+    if (lo_ == hi_) return detail_compare(lo_, x);
+    if (x <= lo_) return 1;
+    if (x >= hi_) return -1;
+    const int s = sign_at_point(*pk_, feature(), Ball(x));
+    if (s == 0) {
+      lo_ = hi_ = x;
+      return 0;
+    }
+    (s > 0 ? lo_ : hi_) = x;
+    return s > 0 ? 1 : -1;
+  }
+
+  int compare(const mpq_class& x) const override {
+    const mpz_class& den = x.get_den();
+    if (mpz_popcount(den.get_mpz_t()) == 1)
+      return compare(Dyadic(x.get_num(), -static_cast<long>(mpz_scan1(den.get_mpz_t(), 0))));
+    for (long bits = 64; bits <= kRotatingMaxPrecision; bits *= 2) {
+      if (x <= lo_.to_mpq()) return lo_ == hi_ ? (lo_.to_mpq() == x ? 0 : 1) : 1;
+      if (x >= hi_.to_mpq()) return lo_ == hi_ ? (hi_.to_mpq() == x ? 0 : -1) : -1;
+      narrow(bits);
+    }
+    // Inside an enclosure narrower than 2^-4096: the sign of f at the rational itself.
+    for (slong prec = 96; prec <= kRotatingMaxPrecision; prec *= 2) {
+      const Precision guard(prec);
+      Posed ps(*pk_, Ball::rational(x));
+      const int s = ps.values(feature()).f.v.sign();
+      if (s == 1 || s == -1) return s;
+    }
+    throw UndecidedTime(undecided_text(feature(), "a time against a decimal boundary"));
+  }
+
+  void narrow(long bits) const override {
+    const Dyadic target = Dyadic(1).scaled(-bits);
+    while (lo_ != hi_ && hi_ - lo_ > target) {
+      const Dyadic width = hi_ - lo_;
+      const Dyadic m = half(lo_ + hi_);
+      // Newton from the midpoint, then a point on the root's other side as far again as the
+      // next Newton step: quadratic convergence, each step confirmed by exact signs.
+      const Dyadic x = newton(m, bits);
+      compare(x);
+      if (lo_ != hi_) {
+        const Dyadic y = newton(x, bits);
+        const Dyadic z = x + (y - x).scaled(1);
+        if (lo_ < z && z < hi_) compare(z);
+      }
+      if (lo_ != hi_ && hi_ - lo_ > half(width)) compare(half(lo_ + hi_));
+    }
+  }
+
+  Dyadic lo() const override { return lo_; }
+  Dyadic hi() const override { return hi_; }
+
+ private:
+  static int detail_compare(const Dyadic& a, const Dyadic& b) { return a < b ? -1 : (b < a ? 1 : 0); }
+
+  // x - f(x) / f'(x), kept inside (lo, hi); the midpoint if the step fails.
+  Dyadic newton(const Dyadic& x, long bits) const {
+    const Precision guard(std::min<slong>(bits + 64, kRotatingMaxPrecision));
+    Posed ps(*pk_, Ball(x));
+    const Values v = ps.values(feature());
+    if (v.f.d.sign() == 2 || v.f.d.exact_zero()) return half(lo_ + hi_);
+    const Dyadic step = (v.f.v / v.f.d).mid();
+    const Dyadic y = x - step;
+    if (!(lo_ < y && y < hi_)) return half(lo_ + hi_);
+    return y;
+  }
+
+  std::shared_ptr<const PairKin> pk_;
+  int feat_;
+  mutable Dyadic lo_, hi_;
+};
+
+// The search of one pair over [0, H], left first (see the top of this file).
+class PairSearch {
+ public:
+  PairSearch(std::shared_ptr<const PairKin> pk, SearchCounters& n) : pk_(std::move(pk)), n_(n) {}
+
+  std::optional<PairResult> run(const Dyadic& H) {
+    std::vector<int> live(pk_->feats.size());
+    for (std::size_t i = 0; i < live.size(); ++i) live[i] = static_cast<int>(i);
+    n_.features_exact += live.size();
+    if (H.sign() <= 0) {
+      visit_start(live);
+    } else {
+      visit(Dyadic(), H, live);
+    }
+    if (!best_) return std::nullopt;
+    return best_->result;
+  }
+
+ private:
+  struct Best {
+    std::shared_ptr<const RotatingRoot> root;
+    PairResult result;
+  };
+
+  // H = 0: only a contact at tau = 0 (touching or overlapping and approaching).
+  void visit_start(const std::vector<int>& live) {
+    for (int i : live) {
+      const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
+      const int s = sign_at_point(*pk_, ft, Ball());
+      if (s > 0) continue;
+      const Precision guard(256);
+      Posed ps(*pk_, Ball());
+      if (!ps.values(ft).f.d.negative()) continue;
+      if (s < 0 && !overlap_applies(ft)) continue;
+      if (ft.to_edge && !on_edge_at_start(ft)) continue;
+      offer(std::make_shared<RotatingRoot>(pk_, i, Dyadic(), Dyadic()), i, s < 0);
+    }
+  }
+
+  static long prec_for(const Dyadic& width) {
+    const long bits = -(static_cast<long>(mpz_sizeinbase(width.mantissa().get_mpz_t(), 2)) + width.exponent());
+    return std::clamp<long>(80 + std::max(0L, bits), 80, 512);
+  }
+
+  void visit(const Dyadic& a, const Dyadic& b, const std::vector<int>& live) {
+    if (best_ && best_->root->hi() <= a) return;
+    const Dyadic width = b - a;
+    const Precision guard(prec_for(width));
+    const Dyadic m = half(a + b), h = half(width);
+    const Ball T = Ball::hull(a, b), M(m), H = Ball::hull(-h, h), H2 = Ball::hull(Dyadic(), half(h * h));
+    Posed pt(*pk_, T), pm(*pk_, M);
+    {  // the swept discs
+      const VJ dt = pt.pose(1).centre() - pt.pose(0).centre(), dm = pm.pose(1).centre() - pm.pose(0).centre();
+      const Ball reach = sqrt(Ball(pk_->k[0].reach2)) + sqrt(Ball(pk_->k[1].reach2));
+      const Jet gt = dot(dt, dt) - constant(reach * reach), gm = dot(dm, dm) - constant(reach * reach);
+      if (meet(gm.v + gm.d * H + gt.dd * H2, gt.v).positive()) return;
+    }
+    std::vector<int> keep;
+    for (int i : live) {
+      const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
+      const Values vt = pt.values(ft), vm = pm.values(ft);
+      // Exactly zero over I (a vertex sliding along an edge's line, both at rest in angle): no
+      // crossing (oracle/README.md).
+      if (vt.f.v.exact_zero()) continue;
+      const Ball F = meet(vm.f.v + vm.f.d * H + vt.f.dd * H2, vt.f.v);
+      if (F.positive()) continue;
+      const Ball D = meet(vm.f.d + vt.f.dd * H, vt.f.d);
+      if (D.positive()) continue;
+      if (F.negative()) {  // below zero throughout: no downward crossing here, only the start's overlap
+        if (!a.is_zero() || vt.f.d.exact_zero()) continue;
+        const int d0 = sign_at_point(*pk_, ft, Ball(), Of::DF);
+        if (d0 > 0 || (d0 == 0 && sign_at_point(*pk_, ft, Ball(), Of::DDF) >= 0)) continue;  // not approaching
+      }
+      if (ft.to_edge) {
+        const Ball U = meet(vm.u.v + vt.u.d * H, vt.u.v);
+        if (U.negative() || (U - Ball(ft.len2)).positive()) continue;
+      }
+      if (D.negative()) {
+        resolve(i, a, b);
+        continue;
+      }
+      // f'' of one sign on I: f' is monotone, and its signs at the ends (exact) may settle the
+      // shape: an end where f' is exactly zero (a tangency at a dyadic time, as in a graze
+      // placed on purpose) is then decided, where the enclosures never could.
+      const int curvature = vt.f.dd.positive() ? 1 : (vt.f.dd.negative() ? -1 : 0);
+      if (curvature != 0) {
+        const int da = sign_at_point(*pk_, ft, Ball(a), Of::DF), db = sign_at_point(*pk_, ft, Ball(b), Of::DF);
+        if ((curvature > 0 && da >= 0) || (curvature < 0 && db >= 0)) continue;  // f' > 0 inside: increasing
+        if ((curvature > 0 && db <= 0) || (curvature < 0 && da <= 0)) {  // f' < 0 but at an end
+          resolve(i, a, b);
+          continue;
+        }
+      }
+      keep.push_back(i);
+    }
+    if (keep.empty()) return;
+    Dyadic scale = b.abs();
+    if (scale < Dyadic(1)) scale = Dyadic(1);
+    if (width <= scale * Dyadic(1).scaled(-kRotatingTangencyBits))
+      throw UndecidedTime(undecided_text(pk_->feats[static_cast<std::size_t>(keep.front())], "a tangency"));
+    visit(a, m, keep);
+    visit(m, b, keep);
+  }
+
+  // f decreasing on [a, b] (f' < 0 but perhaps at an end): at most one root there. A root at a
+  // dyadic end is a downward crossing only where f' < 0; where f' = 0 too it is a tangency: at
+  // tau = 0 a contact if f'' < 0 (approaching at second order), elsewhere a graze.
+  void resolve(int i, const Dyadic& a, const Dyadic& b) {
+    const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
+    const int sb = sign_at_point(*pk_, ft, Ball(b));
+    if (sb > 0) return;
+    const int sa = sign_at_point(*pk_, ft, Ball(a));
+    bool overlap = false;
+    if (sa < 0) {
+      if (!a.is_zero() || !overlap_applies(ft)) return;
+      overlap = true;
+    }
+    const auto crossing_at = [&](const Dyadic& x) {
+      const int d = sign_at_point(*pk_, ft, Ball(x), Of::DF);
+      if (d < 0) return true;
+      if (x.is_zero() && d == 0 && sign_at_point(*pk_, ft, Ball(x), Of::DDF) < 0) return true;
+      if (!graze_ || x < *graze_) graze_ = x;  // touching zero and turning back: a graze
+      return false;
+    };
+    std::shared_ptr<const RotatingRoot> root;
+    if (sa < 0) {
+      root = std::make_shared<RotatingRoot>(pk_, i, a, a);
+    } else if (sa == 0) {
+      if (!crossing_at(a)) return;
+      root = std::make_shared<RotatingRoot>(pk_, i, a, a);
+    } else if (sb == 0) {
+      if (!crossing_at(b)) return;
+      root = std::make_shared<RotatingRoot>(pk_, i, b, b);
+    } else {
+      root = std::make_shared<RotatingRoot>(pk_, i, a, b);
+    }
+    if (ft.to_edge && !on_edge_at(*root)) return;
+    if (ft.pv >= 0 && !extreme_at(*root)) return;
+    offer(root, i, overlap);
+  }
+
+  // A vertex meets an edge only as its body's lowest point towards it: its neighbours not
+  // certainly below it, measured from the feature's side (this is what keeps a two-sided
+  // segment from being met from its far side by a body that already touches its near side).
+  bool extreme_at(const RotatingRoot& r) const {
+    const Feat& ft = r.feature();
+    const Kin& kp = pk_->k[ft.pb];
+    const int n = static_cast<int>(kp.verts.size());
+    const int neighbours[2] = {(ft.pv + n - 1) % n, (ft.pv + 1) % n};
+    for (long bits = 32;; bits += 32) {
+      bool all_above = true;
+      {
+        const Precision guard(std::min<slong>(bits + 96, kRotatingMaxPrecision));
+        Posed ps(*pk_, r.lo() == r.hi() ? Ball(r.lo()) : Ball::hull(r.lo(), r.hi()));
+        const VJ& v = ps.vertex(ft.pb, ft.pv);
+        const VJ& A = ps.vertex(ft.eb, ft.ek);
+        const VJ e = ps.vertex(ft.eb, (ft.ek + 1) % static_cast<int>(pk_->k[ft.eb].verts.size())) - A;
+        for (int nb : neighbours) {
+          if (nb == ft.pv) continue;
+          Ball q = cross(ps.vertex(ft.pb, nb) - v, e).v;
+          if (ft.sigma < 0) q = -q;
+          if (q.negative()) return false;
+          if (!(q.positive() || q.exact_zero())) all_above = false;
+        }
+      }
+      // Parallel to the edge within the cap: an edge lying on the edge, which touches.
+      if (all_above || r.lo() == r.hi() || bits > kTranscendentalTieBits) return true;
+      Dyadic span = r.hi() - r.lo();
+      const long w = static_cast<long>(mpz_sizeinbase(span.mantissa().get_mpz_t(), 2)) + span.exponent();
+      r.narrow(std::max(-w + 16, bits));
+    }
+  }
+
+  // The projection strictly inside the edge at the root: narrowed until decided.
+  bool on_edge_at(const RotatingRoot& r) const {
+    const Feat& ft = r.feature();
+    for (long bits = 32;; bits += 32) {
+      if (r.lo() == r.hi()) {
+        const int s0 = sign_at_point(*pk_, ft, Ball(r.lo()), Of::U);
+        const int s1 = sign_at_point(*pk_, ft, Ball(r.lo()), Of::U, ft.len2);
+        if (s0 == 0 || s1 == 0) throw UndecidedTime(undecided_text(ft, "a contact at an edge's end"));
+        return s0 > 0 && s1 < 0;
+      }
+      {
+        const Precision guard(std::min<slong>(bits + 96, kRotatingMaxPrecision));
+        Posed ps(*pk_, Ball::hull(r.lo(), r.hi()));
+        const Ball U = ps.values(ft).u.v;
+        if (U.negative() || (U - Ball(ft.len2)).positive()) return false;
+        if (U.positive() && (U - Ball(ft.len2)).negative()) return true;
+      }
+      if (bits > kTranscendentalTieBits) throw UndecidedTime(undecided_text(ft, "a contact at an edge's end"));
+      Dyadic span = r.hi() - r.lo();
+      long w = static_cast<long>(mpz_sizeinbase(span.mantissa().get_mpz_t(), 2)) + span.exponent();
+      r.narrow(std::max(-w + 16, bits));
+    }
+  }
+
+  bool on_edge_at_start(const Feat& ft) const {
+    const int s0 = sign_at_point(*pk_, ft, Ball(), Of::U);
+    const int s1 = sign_at_point(*pk_, ft, Ball(), Of::U, ft.len2);
+    if (s0 == 0 || s1 == 0) throw UndecidedTime(undecided_text(ft, "a contact at an edge's end"));
+    return s0 > 0 && s1 < 0;
+  }
+
+  // Overlapping at tau = 0 and approaching (the overlap rule, oracle/README.md): a vertex counts
+  // against the edge of least penetration only, and only as its body's deepest vertex along it;
+  // a circle against a one-sided edge only from outside the edge line.
+  bool overlap_applies(const Feat& ft) const {
+    const Precision guard(512);
+    Posed ps(*pk_, Ball());
+    if (!ft.to_edge) return true;
+    const Kin& ke = pk_->k[ft.eb];
+    const auto distance = [&](const Feat& g) {  // sigma cross / |e|, the signed distance of the point
+      Values v = ps.values(g);
+      Ball f = v.f.v;
+      if (g.pv < 0) f = f + pk_->k[g.pb].radius * sqrt(Ball(g.len2));
+      return f / sqrt(Ball(g.len2));
+    };
+    const Ball mine = distance(ft);
+    if (ft.pv < 0) return !mine.negative();  // the centre not behind the line (on the side measured from)
+    // Against a segment (no inside, two sides): the body must lie more on the side measured from
+    // than behind the line, the least penetration: its highest vertex above the line at least as
+    // far as this one, its deepest, is below it.
+    bool shallow_side = false;
+    for (const Feat& g : pk_->feats) {
+      if (!g.to_edge || g.pb != ft.pb || g.eb != ft.eb || g.sigma != ft.sigma || g.pv < 0) continue;
+      if (g.ek == ft.ek && !(distance(g) + mine).negative()) shallow_side = true;
+      // A shallower edge of a polygon: the overlap is not along this one.
+      if (ke.shape != ShapeKind::Segment && g.pv == ft.pv && g.ek != ft.ek && (distance(g) - mine).positive()) return false;
+      if (g.ek == ft.ek && g.pv != ft.pv && (mine - distance(g)).positive()) return false;  // a deeper vertex
+    }
+    return ke.shape != ShapeKind::Segment || shallow_side;
+  }
+
+  void offer(const std::shared_ptr<const RotatingRoot>& root, int i, bool overlap) {
+    const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
+    RootHandle handle = transcendental_root(root);
+    if (!best_) {
+      best_ = Best{root, PairResult{handle, overlap, {ft.id}}};
+      return;
+    }
+    const int c = compare(*handle, *best_->result.tau);
+    if (c < 0) {
+      best_ = Best{root, PairResult{handle, overlap, {ft.id}}};
+    } else if (c == 0) {
+      std::vector<FeaturePair>& fs = best_->result.features;
+      if (std::find(fs.begin(), fs.end(), ft.id) == fs.end()) fs.push_back(ft.id);
+      best_->result.overlap_rule = best_->result.overlap_rule || overlap;
+    }
+  }
+
+  std::shared_ptr<const PairKin> pk_;
+  SearchCounters& n_;
+  std::optional<Best> best_;
+
+ public:
+  std::optional<Dyadic> graze_;  // the earliest exact tangency (f = f' = 0 at a dyadic time) met
+};
+
+}  // namespace
+
+std::optional<PairResult> rotating_pair_contact(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_hi,
+                                                SearchCounters& n) {
+  PairSearch search(pair_kin(fr, a, b), n);
+  return search.run(tau_hi);
+}
+
+std::optional<Dyadic> rotating_graze(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_hi) {
+  SearchCounters n;
+  PairSearch search(pair_kin(fr, a, b), n);
+  search.run(tau_hi);
+  return search.graze_;
+}
+
+bool rotating_may_touch(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_hi) {
+  if (tau_hi.sign() <= 0) return true;
+  const Kin ka = kin_of(fr, a), kb = kin_of(fr, b);
+  const Precision guard(80);
+  const Dyadic h = half(tau_hi);
+  const Ball T = Ball::hull(Dyadic(), tau_hi), M(h), H = Ball::hull(-h, h), H2 = Ball::hull(Dyadic(), half(h * h));
+  const Pose at(ka, T), am(ka, M), bt(kb, T), bm(kb, M);
+  const VJ dt = bt.centre() - at.centre(), dm = bm.centre() - am.centre();
+  const Ball reach = sqrt(Ball(ka.reach2)) + sqrt(Ball(kb.reach2));
+  const Jet gt = dot(dt, dt) - constant(reach * reach), gm = dot(dm, dm) - constant(reach * reach);
+  return !meet(gm.v + gm.d * H + gt.dd * H2, gt.v).positive();
+}
+
+GapMeasure rotating_gap(Frame& fr, BodyIndex a, BodyIndex b, const FeaturePair& id, const Dyadic& tau) {
+  const std::shared_ptr<PairKin> pk = pair_kin(fr, a, b);
+  const Precision guard(128);
+  Posed ps(*pk, Ball(tau));
+  std::optional<GapMeasure> out;
+  for (const Feat& ft : pk->feats) {
+    if (!(ft.id == id)) continue;
+    const Values v = ps.values(ft);
+    const double r = ft.pv < 0 ? pk->k[ft.pb].radius.mid_double() : 0.0;
+    double gap = 0;
+    if (ft.to_edge) {
+      gap = (v.f.v / sqrt(Ball(ft.len2))).mid_double();
+    } else {
+      const double d2 = (v.f.v + pk->k[ft.pb].radius * pk->k[ft.pb].radius).mid_double();
+      gap = std::sqrt(std::max(d2, 0.0)) - r;
+    }
+    if (!out || std::abs(gap) < std::abs(out->gap)) out = GapMeasure{gap, r};
+  }
+  if (!out) return {std::numeric_limits<double>::quiet_NaN(), 0.0};
+  return *out;
+}
+
+}  // namespace pge::oracle::detail
