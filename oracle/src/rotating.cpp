@@ -56,6 +56,7 @@ Jet dot(const VJ& a, const VJ& b) { return a.x * b.x + a.y * b.y; }
 struct Kin {
   ShapeKind shape = ShapeKind::Circle;
   bool rotates = false;
+  bool fixed_outline = false;  // a fixed polygon or segment that does not turn
   Ball radius;            // circles
   Ball c[3][2];           // centre (pivot, reference point): c0 + c1 tau + c2 tau^2, x and y
   std::vector<std::array<Ball, 2>> verts;  // about the centre (rotating: at angle 0)
@@ -87,6 +88,7 @@ Kin kin_of(Frame& fr, BodyIndex i) {
   Kin k;
   k.shape = m.shape;
   k.rotates = m.rotates;
+  k.fixed_outline = m.fixed && !m.rotates && m.shape != ShapeKind::Circle;
   k.radius = Ball(m.radius);
   const PointPath<Dyadic>& p = reference_of<Dyadic>(fr, i);
   for (int j = 0; j < 3; ++j) {
@@ -185,6 +187,13 @@ class Pose {
 
   const VJ& centre() const { return centre_; }
 
+  // Vertex v's position alone (no derivatives): the cheap first test of an interval.
+  std::array<Ball, 2> position(int v) const {
+    const auto& r = k_.verts[static_cast<std::size_t>(v)];
+    if (!k_.rotates) return {centre_.x.v + r[0], centre_.y.v + r[1]};
+    return {centre_.x.v + (c_ * r[0] - s_ * r[1]), centre_.y.v + (s_ * r[0] + c_ * r[1])};
+  }
+
   VJ vertex(int v) const {
     const auto& r = k_.verts[static_cast<std::size_t>(v)];
     if (!k_.rotates) return {centre_.x + constant(r[0]), centre_.y + constant(r[1])};
@@ -208,7 +217,10 @@ struct Values {
 class Posed {
  public:
   Posed(const PairKin& pk, const Ball& T) : pk_(pk), p_{Pose(pk.k[0], T), Pose(pk.k[1], T)} {
-    for (int i = 0; i < 2; ++i) verts_[i].resize(pk.k[i].verts.size());
+    for (int i = 0; i < 2; ++i) {
+      verts_[i].resize(pk.k[i].verts.size());
+      positions_[i].resize(pk.k[i].verts.size());
+    }
   }
 
   Values values(const Feat& ft) {
@@ -231,9 +243,37 @@ class Posed {
     return out;
   }
 
+  // Whether the feature's function is certainly positive, or its point certainly off the edge,
+  // over the whole of T, from positions alone (no derivatives): most features of a pair are
+  // dropped so, and the jets are made only for the rest.
+  bool apart_by_values(const Feat& ft) {
+    const std::array<Ball, 2> p = ft.pv < 0 ? std::array<Ball, 2>{p_[ft.pb].centre().x.v, p_[ft.pb].centre().y.v}
+                                            : position(ft.pb, ft.pv);
+    if (!ft.to_edge) {
+      const std::array<Ball, 2>& q = position(ft.eb, ft.ek);
+      const Ball dx = q[0] - p[0], dy = q[1] - p[1];
+      return (dx * dx + dy * dy - pk_.k[ft.pb].radius * pk_.k[ft.pb].radius).positive();
+    }
+    const int n = static_cast<int>(pk_.k[ft.eb].verts.size());
+    const std::array<Ball, 2>& A = position(ft.eb, ft.ek);
+    const std::array<Ball, 2>& B = position(ft.eb, (ft.ek + 1) % n);
+    const Ball ex = B[0] - A[0], ey = B[1] - A[1], dx = p[0] - A[0], dy = p[1] - A[1];
+    Ball f = dx * ey - dy * ex;
+    if (ft.sigma < 0) f = -f;
+    if (ft.pv < 0) f = f - pk_.k[ft.pb].radius * sqrt(Ball(ft.len2));
+    if (f.positive()) return true;
+    const Ball u = dx * ex + dy * ey;
+    return u.negative() || (u - Ball(ft.len2)).positive();
+  }
+
   const VJ& vertex(int body, int v) {
     auto& slot = verts_[body][static_cast<std::size_t>(v)];
     if (!slot) slot = p_[body].vertex(v);
+    return *slot;
+  }
+  const std::array<Ball, 2>& position(int body, int v) {
+    auto& slot = positions_[body][static_cast<std::size_t>(v)];
+    if (!slot) slot = p_[body].position(v);
     return *slot;
   }
   const Pose& pose(int body) const { return p_[body]; }
@@ -242,6 +282,7 @@ class Posed {
   const PairKin& pk_;
   Pose p_[2];
   std::vector<std::optional<VJ>> verts_[2];
+  std::vector<std::optional<std::array<Ball, 2>>> positions_[2];
 };
 
 std::string undecided_text(const Feat& ft, const char* what) {
@@ -351,6 +392,44 @@ class RotatingRoot final : public TranscendentalRoot {
   mutable Dyadic lo_, hi_;
 };
 
+// Whether two bodies are certainly apart over an interval T (poses at T and at its midpoint,
+// H = T - m, H2 = [0, h^2 / 2]): the discs they sweep as they turn stay apart, or, where one is a
+// fixed outline that does not turn (a wall, a floor: its disc would hold everything near it),
+// the other's disc stays beyond the line of one of its edges (a segment's either side).
+bool apart_over(const Kin& ka, const Kin& kb, const Pose& at, const Pose& am, const Pose& bt, const Pose& bm,
+                const Ball& H, const Ball& H2) {
+  const auto certainly_positive = [&](const Jet& gt, const Jet& gm) {
+    return meet(gm.v + gm.d * H + gt.dd * H2, gt.v).positive();
+  };
+  if (ka.fixed_outline != kb.fixed_outline) {
+    const bool a_fixed = ka.fixed_outline;
+    const Kin& wall = a_fixed ? ka : kb;
+    const Kin& other = a_fixed ? kb : ka;
+    const VJ& ct = (a_fixed ? bt : at).centre();
+    const VJ& cm = (a_fixed ? bm : am).centre();
+    const VJ& w = (a_fixed ? at : bt).centre();  // constant: the outline's position
+    const Ball reach = sqrt(Ball(other.reach2));
+    const int n = static_cast<int>(wall.verts.size());
+    const int edges = wall.shape == ShapeKind::Segment ? 1 : n;
+    for (int k = 0; k < edges; ++k) {
+      const auto& p = wall.verts[static_cast<std::size_t>(k)];
+      const auto& q = wall.verts[static_cast<std::size_t>((k + 1) % n)];
+      const Ball ex = q[0] - p[0], ey = q[1] - p[1];
+      const VJ A{constant(w.x.v + p[0]), constant(w.y.v + p[1])};
+      const VJ e{constant(ex), constant(ey)};
+      const Jet rl = constant(reach * sqrt(ex * ex + ey * ey));
+      const Jet st = cross(ct - A, e), sm = cross(cm - A, e);
+      if (certainly_positive(st - rl, sm - rl)) return true;
+      if (wall.shape == ShapeKind::Segment && certainly_positive(negate(st) - rl, negate(sm) - rl)) return true;
+    }
+    return false;
+  }
+  const VJ dt = bt.centre() - at.centre(), dm = bm.centre() - am.centre();
+  const Ball reach = sqrt(Ball(ka.reach2)) + sqrt(Ball(kb.reach2));
+  const Jet r2 = constant(reach * reach);
+  return certainly_positive(dot(dt, dt) - r2, dot(dm, dm) - r2);
+}
+
 // The search of one pair over [0, H], left first (see the top of this file).
 class PairSearch {
  public:
@@ -402,15 +481,11 @@ class PairSearch {
     const Dyadic m = half(a + b), h = half(width);
     const Ball T = Ball::hull(a, b), M(m), H = Ball::hull(-h, h), H2 = Ball::hull(Dyadic(), half(h * h));
     Posed pt(*pk_, T), pm(*pk_, M);
-    {  // the swept discs
-      const VJ dt = pt.pose(1).centre() - pt.pose(0).centre(), dm = pm.pose(1).centre() - pm.pose(0).centre();
-      const Ball reach = sqrt(Ball(pk_->k[0].reach2)) + sqrt(Ball(pk_->k[1].reach2));
-      const Jet gt = dot(dt, dt) - constant(reach * reach), gm = dot(dm, dm) - constant(reach * reach);
-      if (meet(gm.v + gm.d * H + gt.dd * H2, gt.v).positive()) return;
-    }
+    if (apart_over(pk_->k[0], pk_->k[1], pt.pose(0), pm.pose(0), pt.pose(1), pm.pose(1), H, H2)) return;
     std::vector<int> keep;
     for (int i : live) {
       const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
+      if (pt.apart_by_values(ft)) continue;
       const Values vt = pt.values(ft), vm = pm.values(ft);
       // Exactly zero over I (a vertex sliding along an edge's line, both at rest in angle): no
       // crossing (oracle/README.md).
@@ -429,7 +504,7 @@ class PairSearch {
         if (U.negative() || (U - Ball(ft.len2)).positive()) continue;
       }
       if (D.negative()) {
-        resolve(i, a, b);
+        resolve(i, a, b, vm, vt, h, H2);
         continue;
       }
       // f'' of one sign on I: f' is monotone, and its signs at the ends (exact) may settle the
@@ -440,7 +515,7 @@ class PairSearch {
         const int da = sign_at_point(*pk_, ft, Ball(a), Of::DF), db = sign_at_point(*pk_, ft, Ball(b), Of::DF);
         if ((curvature > 0 && da >= 0) || (curvature < 0 && db >= 0)) continue;  // f' > 0 inside: increasing
         if ((curvature > 0 && db <= 0) || (curvature < 0 && da <= 0)) {  // f' < 0 but at an end
-          resolve(i, a, b);
+          resolve(i, a, b, vm, vt, h, H2);
           continue;
         }
       }
@@ -458,11 +533,21 @@ class PairSearch {
   // f decreasing on [a, b] (f' < 0 but perhaps at an end): at most one root there. A root at a
   // dyadic end is a downward crossing only where f' < 0; where f' = 0 too it is a tangency: at
   // tau = 0 a contact if f'' < 0 (approaching at second order), elsewhere a graze.
-  void resolve(int i, const Dyadic& a, const Dyadic& b) {
+  // vm, vt: the jets at the midpoint and over [a, b]; f at an end is first tried from the Taylor
+  // form there, f(m) +- f'(m) h + f''(I) [0, h^2 / 2], and taken at the point only if that holds 0.
+  void resolve(int i, const Dyadic& a, const Dyadic& b, const Values& vm, const Values& vt, const Dyadic& h,
+               const Ball& H2) {
     const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
-    const int sb = sign_at_point(*pk_, ft, Ball(b));
+    const auto end_sign = [&](const Dyadic& x, int side) {
+      const Ball hb(h);
+      const Ball f = vm.f.v + (side > 0 ? vm.f.d * hb : -(vm.f.d * hb)) + vt.f.dd * H2;
+      if (f.positive()) return 1;
+      if (f.negative()) return -1;
+      return sign_at_point(*pk_, ft, Ball(x));
+    };
+    const int sb = end_sign(b, 1);
     if (sb > 0) return;
-    const int sa = sign_at_point(*pk_, ft, Ball(a));
+    const int sa = end_sign(a, -1);
     bool overlap = false;
     if (sa < 0) {
       if (!a.is_zero() || !overlap_applies(ft)) return;
@@ -632,10 +717,7 @@ bool rotating_may_touch(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_h
   const Dyadic h = half(tau_hi);
   const Ball T = Ball::hull(Dyadic(), tau_hi), M(h), H = Ball::hull(-h, h), H2 = Ball::hull(Dyadic(), half(h * h));
   const Pose at(ka, T), am(ka, M), bt(kb, T), bm(kb, M);
-  const VJ dt = bt.centre() - at.centre(), dm = bm.centre() - am.centre();
-  const Ball reach = sqrt(Ball(ka.reach2)) + sqrt(Ball(kb.reach2));
-  const Jet gt = dot(dt, dt) - constant(reach * reach), gm = dot(dm, dm) - constant(reach * reach);
-  return !meet(gm.v + gm.d * H + gt.dd * H2, gt.v).positive();
+  return !apart_over(ka, kb, at, am, bt, bm, H, H2);
 }
 
 GapMeasure rotating_gap(Frame& fr, BodyIndex a, BodyIndex b, const FeaturePair& id, const Dyadic& tau) {
