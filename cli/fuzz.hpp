@@ -22,6 +22,10 @@ struct FuzzOptions {
   bool storms_fail = false;
   bool oracle = true;             // judge every event with the exact oracle (miss, phantom, rounding)
   bool polygons = true;
+  // > 0: every moving polygon and segment turns, at a rate in [-spin, spin] rad/s drawn from its
+  // id and the campaign seed (so a shrunk scene keeps its bodies' rates); judged by the referee
+  // for rotation.
+  double spin = 0;
   bool progress = false;
   bool quiet = false;
 };

@@ -164,6 +164,10 @@ int main(int argc, char** argv) {
   fuzz_cmd->add_option("--max-failures", fuzz.max_failures, "Stop after this many failures")->check(CLI::Range(1u, 100000u));
   bool no_polygons = false;
   fuzz_cmd->add_flag("--no-polygons", no_polygons, "Generate scenes of circles and segments only");
+  fuzz_cmd->add_option("--spin", fuzz.spin,
+                       "Turn every moving polygon and segment at a rate in [-W, W] rad/s, drawn from its id and the "
+                       "seed (0: none); judged by the referee for rotation")
+      ->check(CLI::Range(0.0, 1000.0));
   fuzz_cmd->add_flag("--storms-fail", fuzz.storms_fail, "Count event storms (today: resting contact between moving bodies) as failures");
   bool no_oracle = false;
   fuzz_cmd->add_flag("--no-oracle", no_oracle,

@@ -60,12 +60,14 @@ bool momentum_conserved(const CollisionInfo<double>& c, double ma, double mb, st
   return true;
 }
 
-bool kinetic_energy_conserved(const CollisionInfo<double>& c, double ma, double mb, std::string* detail) {
-  auto ke = [](double m, const Vec2d& v) {
-    return m == 0 ? Rational(0) : exact(m) * (exact(v.x) * exact(v.x) + exact(v.y) * exact(v.y)) / 2;
+bool kinetic_energy_conserved(const CollisionInfo<double>& c, double ma, double mb, std::string* detail, double ia,
+                              double ib) {
+  auto ke = [](double m, const Vec2d& v, double inertia, double w) {
+    if (m == 0) return Rational(0);
+    return exact(m) * (exact(v.x) * exact(v.x) + exact(v.y) * exact(v.y)) / 2 + exact(inertia) * exact(w) * exact(w) / 2;
   };
-  const Rational before = ke(ma, c.va_before) + ke(mb, c.vb_before);
-  const Rational after = ke(ma, c.va_after) + ke(mb, c.vb_after);
+  const Rational before = ke(ma, c.va_before, ia, c.wa_before) + ke(mb, c.vb_before, ib, c.wb_before);
+  const Rational after = ke(ma, c.va_after, ia, c.wa_after) + ke(mb, c.vb_after, ib, c.wb_after);
   const double change = static_cast<double>(abs(after - before));
   const double bound = kCollisionEnergyEps * kEps * static_cast<double>(before + after);
   if (change > bound) {
@@ -91,7 +93,8 @@ InvariantReport check_invariants(const Scene& scene, const InvariantOptions& opt
       const double ma = w.mass(c.a), mb = w.mass(c.b);
       if (ma > 0 && mb > 0 && !momentum_conserved(c, ma, mb, &detail)) fail(FailureKind::Momentum, c.time, detail);
       const bool elastic = w.restitution(c.a) == 1 && w.restitution(c.b) == 1;
-      if (elastic && !kinetic_energy_conserved(c, ma, mb, &detail)) fail(FailureKind::Energy, c.time, detail);
+      if (elastic && !kinetic_energy_conserved(c, ma, mb, &detail, w.inertia(c.a), w.inertia(c.b)))
+        fail(FailureKind::Energy, c.time, detail);
     });
     const double start_depth = w.largest_overlap().depth;
     while (!report.failure && w.step()) {

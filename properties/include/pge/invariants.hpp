@@ -30,7 +30,10 @@ inline constexpr double kRunEnergyEpsPerEvent = 64;
 
 // Exact momentum and energy checks of one collision; on failure, `detail` says by how much.
 bool momentum_conserved(const CollisionInfo<double>& c, double mass_a, double mass_b, std::string* detail);
-bool kinetic_energy_conserved(const CollisionInfo<double>& c, double mass_a, double mass_b, std::string* detail);
+// With inertia_a, inertia_b (World::inertia: 0 for a body that does not turn) the energy includes
+// I w^2 / 2 from the event's angular velocities.
+bool kinetic_energy_conserved(const CollisionInfo<double>& c, double mass_a, double mass_b, std::string* detail,
+                              double inertia_a = 0, double inertia_b = 0);
 
 enum class FailureKind : std::uint8_t {
   Exception,   // the engine threw (other than rejecting the scene)
