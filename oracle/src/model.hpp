@@ -7,6 +7,7 @@
 #include "pge/oracle_state.hpp"
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <unordered_map>
 #include <vector>
@@ -96,6 +97,9 @@ class Frame {
   const PointPath<Dyadic>& reference(BodyIndex i, const Dyadic*);
   const PointPath<Interval>& reference(BodyIndex i, const Interval*);
   template <class N> const BodyModel<N>& body(BodyIndex i) const;
+  // What the rotating search derives of body i from this frame's now (rotating.cpp's own type,
+  // erased here): made once per frame, shared by every pair the body is in.
+  std::shared_ptr<const void>& rotating_slot(BodyIndex i) { return rotating_[i]; }
 
  private:
   const std::vector<BodyModel<Dyadic>>& exact_;
@@ -106,6 +110,7 @@ class Frame {
   // every body, so that making a frame costs nothing per body.
   std::unordered_map<BodyIndex, PointPath<Dyadic>> exact_paths_;
   std::unordered_map<BodyIndex, PointPath<Interval>> interval_paths_;
+  std::unordered_map<BodyIndex, std::shared_ptr<const void>> rotating_;
 };
 
 template <> inline const BodyModel<Dyadic>& Frame::body<Dyadic>(BodyIndex i) const { return exact_[i]; }

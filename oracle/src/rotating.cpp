@@ -32,25 +32,30 @@
 namespace pge::oracle::detail {
 namespace {
 
-// A function's value and its first two derivatives in tau, enclosed.
-struct Jet {
-  Ball v, d, dd;
+// A function's value and its first two derivatives in tau, enclosed: in Arb's balls (Ball), or
+// in the oracle's double intervals (Interval, src/interval.hpp: outward rounding), the quick
+// first test of an interval, about twenty times cheaper, which decides most of them.
+template <class N> struct JetT {
+  N v, d, dd;
 };
+using Jet = JetT<Ball>;
 
-Jet constant(const Ball& c) { return {c, Ball(), Ball()}; }
-Jet operator+(const Jet& a, const Jet& b) { return {a.v + b.v, a.d + b.d, a.dd + b.dd}; }
-Jet operator-(const Jet& a, const Jet& b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
-Jet operator*(const Jet& a, const Jet& b) {
-  return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + (a.d * b.d).scaled(1) + a.v * b.dd};
+template <class N> JetT<N> constant(const N& c) { return {c, N(), N()}; }
+template <class N> JetT<N> operator+(const JetT<N>& a, const JetT<N>& b) { return {a.v + b.v, a.d + b.d, a.dd + b.dd}; }
+template <class N> JetT<N> operator-(const JetT<N>& a, const JetT<N>& b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+template <class N> JetT<N> operator*(const JetT<N>& a, const JetT<N>& b) {
+  const N dd = a.d * b.d;
+  return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + (dd + dd) + a.v * b.dd};
 }
-Jet negate(const Jet& a) { return {-a.v, -a.d, -a.dd}; }
+template <class N> JetT<N> negate(const JetT<N>& a) { return {-a.v, -a.d, -a.dd}; }
 
-struct VJ {
-  Jet x, y;
+template <class N> struct VJT {
+  JetT<N> x, y;
 };
-VJ operator-(const VJ& a, const VJ& b) { return {a.x - b.x, a.y - b.y}; }
-Jet cross(const VJ& a, const VJ& b) { return a.x * b.y - a.y * b.x; }
-Jet dot(const VJ& a, const VJ& b) { return a.x * b.x + a.y * b.y; }
+using VJ = VJT<Ball>;
+template <class N> VJT<N> operator-(const VJT<N>& a, const VJT<N>& b) { return {a.x - b.x, a.y - b.y}; }
+template <class N> JetT<N> cross(const VJT<N>& a, const VJT<N>& b) { return a.x * b.y - a.y * b.x; }
+template <class N> JetT<N> dot(const VJT<N>& a, const VJT<N>& b) { return a.x * b.x + a.y * b.y; }
 
 // One body's kinematics from the search's now (tau = 0), exact.
 struct Kin {
@@ -62,6 +67,13 @@ struct Kin {
   std::vector<std::array<Ball, 2>> verts;  // about the centre (rotating: at angle 0)
   Ball theta, omega;      // angle at tau = 0 and its rate
   Dyadic reach2;          // the largest squared distance of a point of the shape from the centre
+  // The same numbers enclosed in double intervals, for the quick test.
+  Interval radius_i, c_i[3][2], omega_i;
+  std::vector<std::array<Interval, 2>> verts_i;
+  // Edge k (vertex k to the next): |e|^2 exactly, as a ball, and |e|^2 and |e| enclosed.
+  std::vector<Dyadic> len2;
+  std::vector<Ball> len2_b;
+  std::vector<Interval> len2_i, elen_i;
 };
 
 int edge_count(const Kin& k) {
@@ -75,15 +87,15 @@ struct Feat {
   bool to_edge = false;
   int eb = 0, ek = 0;   // the edge from vertex ek of body eb to the next, or (point to point) its vertex ek
   int sigma = 1;        // the side of the edge measured from (+1: along (e.y, -e.x))
-  Dyadic len2;          // |e|^2
 };
 
 struct PairKin {
-  Kin k[2];
+  std::shared_ptr<const Kin> kins[2];
   std::vector<Feat> feats;
+  const Kin& kin(int i) const { return *kins[i]; }
 };
 
-Kin kin_of(Frame& fr, BodyIndex i) {
+Kin make_kin(Frame& fr, BodyIndex i) {
   const BodyModel<Dyadic>& m = fr.exact_body(i);
   Kin k;
   k.shape = m.shape;
@@ -107,23 +119,41 @@ Kin kin_of(Frame& fr, BodyIndex i) {
   k.reach2 = r2;
   k.theta = Ball(m.theta0 + m.omega * (fr.now() - m.t0));
   k.omega = Ball(m.omega);
+  k.radius_i = Interval::enclose(m.radius);
+  k.omega_i = Interval::enclose(m.omega);
+  for (int j = 0; j < 3; ++j) {
+    k.c_i[j][0] = j <= p.x.deg ? Interval::enclose(p.x.c[j]) : Interval();
+    k.c_i[j][1] = j <= p.y.deg ? Interval::enclose(p.y.c[j]) : Interval();
+  }
+  for (const V2<Dyadic>& v : vs) k.verts_i.push_back({Interval::enclose(v.x), Interval::enclose(v.y)});
+  for (std::size_t e = 0; e < vs.size(); ++e) {
+    const V2<Dyadic>& from = vs[e];
+    const V2<Dyadic>& to = vs[(e + 1) % vs.size()];
+    const Dyadic dx = to.x - from.x, dy = to.y - from.y;
+    k.len2.push_back(dx * dx + dy * dy);
+    k.len2_b.emplace_back(k.len2.back());
+    const Interval l2 = Interval::enclose(k.len2.back());
+    k.len2_i.push_back(l2);
+    k.elen_i.push_back(Interval(next_down(std::sqrt(l2.lo())), sqrt_up(l2.hi())));
+  }
   return k;
+}
+
+// Body i's kinematics from the frame's now, made once per frame (Frame::rotating_slot).
+std::shared_ptr<const Kin> kin_of(Frame& fr, BodyIndex i) {
+  std::shared_ptr<const void>& slot = fr.rotating_slot(i);
+  if (!slot) slot = std::make_shared<const Kin>(make_kin(fr, i));
+  return std::static_pointer_cast<const Kin>(slot);
 }
 
 std::vector<Feat> features_of(const PairKin& pk) {
   std::vector<Feat> out;
   const auto sigmas = [](const Kin& k) { return k.shape == ShapeKind::Segment ? std::vector<int>{1, -1} : std::vector<int>{1}; };
-  const auto edge_len2 = [](const Kin& k, int l) {
-    const auto& p = k.verts[static_cast<std::size_t>(l)];
-    const auto& q = k.verts[static_cast<std::size_t>((l + 1) % static_cast<int>(k.verts.size()))];
-    const Dyadic dx = q[0].mid() - p[0].mid(), dy = q[1].mid() - p[1].mid();
-    return dx * dx + dy * dy;
-  };
   const auto index = [](int k) { return static_cast<std::uint16_t>(k); };
   for (int x = 0; x < 2; ++x) {
     const int y = 1 - x;
-    const Kin& kx = pk.k[x];
-    const Kin& ky = pk.k[y];
+    const Kin& kx = pk.kin(x);
+    const Kin& ky = pk.kin(y);
     if (ky.shape == ShapeKind::Circle) continue;  // from the circle's side (two circles never turn)
     // The circle's centre (-1) or every vertex, against every edge of the other body.
     std::vector<int> points;
@@ -144,7 +174,6 @@ std::vector<Feat> features_of(const PairKin& pk) {
           f.eb = y;
           f.ek = l;
           f.sigma = s;
-          f.len2 = edge_len2(ky, l);
           out.push_back(f);
         }
     if (kx.shape != ShapeKind::Circle) continue;
@@ -162,83 +191,147 @@ std::vector<Feat> features_of(const PairKin& pk) {
 
 std::shared_ptr<PairKin> pair_kin(Frame& fr, BodyIndex a, BodyIndex b) {
   auto pk = std::make_shared<PairKin>();
-  pk->k[0] = kin_of(fr, a);
-  pk->k[1] = kin_of(fr, b);
+  pk->kins[0] = kin_of(fr, a);
+  pk->kins[1] = kin_of(fr, b);
   pk->feats = features_of(*pk);
   return pk;
 }
 
+Ball ball_meet(const Ball& a, const Ball& b) { return meet(a, b); }  // the friend, out of Num's scope
+
+// A Kin's numbers and the operations the jets need, in either number type.
+template <class N> struct Num;
+template <> struct Num<Ball> {
+  static const Ball& radius(const Kin& k) { return k.radius; }
+  static const Ball& c(const Kin& k, int j, int i) { return k.c[j][i]; }
+  static const std::array<Ball, 2>& vert(const Kin& k, int v) { return k.verts[static_cast<std::size_t>(v)]; }
+  static const Ball& omega(const Kin& k) { return k.omega; }
+  static const Ball& len2(const Kin& k, int e) { return k.len2_b[static_cast<std::size_t>(e)]; }
+  static Ball elen(const Kin& k, int e) { return sqrt(len2(k, e)); }
+  static void sin_cos_at(const Kin& k, const Ball& T, Ball& s, Ball& c) { sin_cos(s, c, k.theta + k.omega * T); }
+  static Ball exact(const Dyadic& x) { return Ball(x); }
+  static Ball root(const Ball& x) { return sqrt(x); }
+  static bool positive(const Ball& x) { return x.positive(); }
+  static bool negative(const Ball& x) { return x.negative(); }
+  static Ball meet(const Ball& a, const Ball& b) { return ball_meet(a, b); }
+};
+template <> struct Num<Interval> {
+  static const Interval& radius(const Kin& k) { return k.radius_i; }
+  static const Interval& c(const Kin& k, int j, int i) { return k.c_i[j][i]; }
+  static const std::array<Interval, 2>& vert(const Kin& k, int v) { return k.verts_i[static_cast<std::size_t>(v)]; }
+  static const Interval& omega(const Kin& k) { return k.omega_i; }
+  static const Interval& len2(const Kin& k, int e) { return k.len2_i[static_cast<std::size_t>(e)]; }
+  static const Interval& elen(const Kin& k, int e) { return k.elen_i[static_cast<std::size_t>(e)]; }
+  // sin and cos of the angle over T from Arb (rigorous), rounded outward to doubles.
+  static void sin_cos_at(const Kin& k, const Interval& T, Interval& s, Interval& c) {
+    const Precision guard(64);
+    Ball sb, cb;
+    sin_cos(sb, cb, k.theta + k.omega * Ball::hull(Dyadic::from(T.lo()), Dyadic::from(T.hi())));
+    s = to_interval(sb);
+    c = to_interval(cb);
+  }
+  static Interval to_interval(const Ball& b) {
+    arf_t lo, hi;
+    arf_init(lo);
+    arf_init(hi);
+    arb_get_lbound_arf(lo, b.get(), 64);
+    arb_get_ubound_arf(hi, b.get(), 64);
+    const Interval r(arf_get_d(lo, ARF_RND_FLOOR), arf_get_d(hi, ARF_RND_CEIL));
+    arf_clear(lo);
+    arf_clear(hi);
+    return r;
+  }
+  static Interval exact(const Dyadic& x) { return Interval::enclose(x); }
+  static Interval root(const Interval& x) {  // x >= 0
+    const double lo = x.lo() > 0 ? next_down(std::sqrt(x.lo())) : 0.0;
+    return Interval(std::max(lo, 0.0), sqrt_up(x.hi()));
+  }
+  static bool positive(const Interval& x) { return x.certainly_positive(); }
+  static bool negative(const Interval& x) { return x.certainly_negative(); }
+  static Interval meet(const Interval& a, const Interval& b) {
+    const double lo = std::max(a.lo(), b.lo()), hi = std::min(a.hi(), b.hi());
+    return lo <= hi ? Interval(lo, hi) : a;  // disjoint only if one were no enclosure
+  }
+};
+
 // A body's points at tau = T (a point or an interval), as jets.
-class Pose {
+template <class N> class PoseT {
  public:
-  Pose(const Kin& k, const Ball& T) : k_(k) {
-    const Ball T2 = T * T;
+  using M = Num<N>;
+  PoseT(const Kin& k, const N& T) : k_(k) {
+    const N T2 = T * T;
     for (int i = 0; i < 2; ++i) {
-      Jet& j = i == 0 ? centre_.x : centre_.y;
-      j.v = k.c[0][i] + k.c[1][i] * T + k.c[2][i] * T2;
-      j.d = k.c[1][i] + (k.c[2][i] * T).scaled(1);
-      j.dd = k.c[2][i].scaled(1);
+      JetT<N>& j = i == 0 ? centre_.x : centre_.y;
+      const N c2T = M::c(k, 2, i) * T;
+      j.v = M::c(k, 0, i) + M::c(k, 1, i) * T + M::c(k, 2, i) * T2;
+      j.d = M::c(k, 1, i) + (c2T + c2T);
+      j.dd = M::c(k, 2, i) + M::c(k, 2, i);
     }
     if (k.rotates) {
-      sin_cos(s_, c_, k.theta + k.omega * T);
-      w2_ = k.omega * k.omega;
+      M::sin_cos_at(k, T, s_, c_);
+      w2_ = M::omega(k) * M::omega(k);
     }
   }
 
-  const VJ& centre() const { return centre_; }
+  const VJT<N>& centre() const { return centre_; }
 
   // Vertex v's position alone (no derivatives): the cheap first test of an interval.
-  std::array<Ball, 2> position(int v) const {
-    const auto& r = k_.verts[static_cast<std::size_t>(v)];
+  std::array<N, 2> position(int v) const {
+    const auto& r = M::vert(k_, v);
     if (!k_.rotates) return {centre_.x.v + r[0], centre_.y.v + r[1]};
     return {centre_.x.v + (c_ * r[0] - s_ * r[1]), centre_.y.v + (s_ * r[0] + c_ * r[1])};
   }
 
-  VJ vertex(int v) const {
-    const auto& r = k_.verts[static_cast<std::size_t>(v)];
+  VJT<N> vertex(int v) const {
+    const auto& r = M::vert(k_, v);
     if (!k_.rotates) return {centre_.x + constant(r[0]), centre_.y + constant(r[1])};
-    const Ball rx = c_ * r[0] - s_ * r[1];
-    const Ball ry = s_ * r[0] + c_ * r[1];
-    return {{centre_.x.v + rx, centre_.x.d - k_.omega * ry, centre_.x.dd - w2_ * rx},
-            {centre_.y.v + ry, centre_.y.d + k_.omega * rx, centre_.y.dd - w2_ * ry}};
+    const N rx = c_ * r[0] - s_ * r[1];
+    const N ry = s_ * r[0] + c_ * r[1];
+    const N& w = M::omega(k_);
+    return {{centre_.x.v + rx, centre_.x.d - w * ry, centre_.x.dd - w2_ * rx},
+            {centre_.y.v + ry, centre_.y.d + w * rx, centre_.y.dd - w2_ * ry}};
   }
 
  private:
   const Kin& k_;
-  VJ centre_;
-  Ball s_, c_, w2_;
+  VJT<N> centre_;
+  N s_, c_, w2_;
 };
+using Pose = PoseT<Ball>;
 
 // A feature's contact function f and projection u = (P - A).e, as jets.
-struct Values {
-  Jet f, u;
+template <class N> struct ValuesT {
+  JetT<N> f, u;
 };
+using Values = ValuesT<Ball>;
 
-class Posed {
+template <class N> class PosedT {
  public:
-  Posed(const PairKin& pk, const Ball& T) : pk_(pk), p_{Pose(pk.k[0], T), Pose(pk.k[1], T)} {
+  using M = Num<N>;
+  PosedT(const PairKin& pk, const N& T) : pk_(pk), p_{PoseT<N>(pk.kin(0), T), PoseT<N>(pk.kin(1), T)} {
     for (int i = 0; i < 2; ++i) {
-      verts_[i].resize(pk.k[i].verts.size());
-      positions_[i].resize(pk.k[i].verts.size());
+      verts_[i].resize(pk.kin(i).verts.size());
+      positions_[i].resize(pk.kin(i).verts.size());
     }
   }
 
-  Values values(const Feat& ft) {
-    Values out;
-    const VJ p = ft.pv < 0 ? p_[ft.pb].centre() : vertex(ft.pb, ft.pv);
-    const Kin& eb = pk_.k[ft.eb];
+  ValuesT<N> values(const Feat& ft) {
+    ValuesT<N> out;
+    const VJT<N> p = ft.pv < 0 ? p_[ft.pb].centre() : vertex(ft.pb, ft.pv);
+    const Kin& eb = pk_.kin(ft.eb);
+    const N& r = M::radius(pk_.kin(ft.pb));
     if (!ft.to_edge) {
-      const VJ d = vertex(ft.eb, ft.ek) - p;
-      out.f = dot(d, d) - constant(pk_.k[ft.pb].radius * pk_.k[ft.pb].radius);
+      const VJT<N> d = vertex(ft.eb, ft.ek) - p;
+      out.f = dot(d, d) - constant(N(r * r));
       return out;
     }
     const int n = static_cast<int>(eb.verts.size());
-    const VJ& A = vertex(ft.eb, ft.ek);
-    const VJ e = vertex(ft.eb, (ft.ek + 1) % n) - A;
-    const VJ d = p - A;
-    const Jet s = cross(d, e);
+    const VJT<N>& A = vertex(ft.eb, ft.ek);
+    const VJT<N> e = vertex(ft.eb, (ft.ek + 1) % n) - A;
+    const VJT<N> d = p - A;
+    const JetT<N> s = cross(d, e);
     out.f = ft.sigma > 0 ? s : negate(s);
-    if (ft.pv < 0) out.f = out.f - constant(pk_.k[ft.pb].radius * sqrt(Ball(ft.len2)));
+    if (ft.pv < 0) out.f = out.f - constant(N(r * M::elen(eb, ft.ek)));
     out.u = dot(d, e);
     return out;
   }
@@ -247,43 +340,45 @@ class Posed {
   // over the whole of T, from positions alone (no derivatives): most features of a pair are
   // dropped so, and the jets are made only for the rest.
   bool apart_by_values(const Feat& ft) {
-    const std::array<Ball, 2> p = ft.pv < 0 ? std::array<Ball, 2>{p_[ft.pb].centre().x.v, p_[ft.pb].centre().y.v}
-                                            : position(ft.pb, ft.pv);
+    const std::array<N, 2> p =
+        ft.pv < 0 ? std::array<N, 2>{p_[ft.pb].centre().x.v, p_[ft.pb].centre().y.v} : position(ft.pb, ft.pv);
+    const N& r = M::radius(pk_.kin(ft.pb));
     if (!ft.to_edge) {
-      const std::array<Ball, 2>& q = position(ft.eb, ft.ek);
-      const Ball dx = q[0] - p[0], dy = q[1] - p[1];
-      return (dx * dx + dy * dy - pk_.k[ft.pb].radius * pk_.k[ft.pb].radius).positive();
+      const std::array<N, 2>& q = position(ft.eb, ft.ek);
+      const N dx = q[0] - p[0], dy = q[1] - p[1];
+      return M::positive(dx * dx + dy * dy - r * r);
     }
-    const int n = static_cast<int>(pk_.k[ft.eb].verts.size());
-    const std::array<Ball, 2>& A = position(ft.eb, ft.ek);
-    const std::array<Ball, 2>& B = position(ft.eb, (ft.ek + 1) % n);
-    const Ball ex = B[0] - A[0], ey = B[1] - A[1], dx = p[0] - A[0], dy = p[1] - A[1];
-    Ball f = dx * ey - dy * ex;
+    const int n = static_cast<int>(pk_.kin(ft.eb).verts.size());
+    const std::array<N, 2>& A = position(ft.eb, ft.ek);
+    const std::array<N, 2>& B = position(ft.eb, (ft.ek + 1) % n);
+    const N ex = B[0] - A[0], ey = B[1] - A[1], dx = p[0] - A[0], dy = p[1] - A[1];
+    N f = dx * ey - dy * ex;
     if (ft.sigma < 0) f = -f;
-    if (ft.pv < 0) f = f - pk_.k[ft.pb].radius * sqrt(Ball(ft.len2));
-    if (f.positive()) return true;
-    const Ball u = dx * ex + dy * ey;
-    return u.negative() || (u - Ball(ft.len2)).positive();
+    if (ft.pv < 0) f = f - r * M::elen(pk_.kin(ft.eb), ft.ek);
+    if (M::positive(f)) return true;
+    const N u = dx * ex + dy * ey;
+    return M::negative(u) || M::positive(u - M::len2(pk_.kin(ft.eb), ft.ek));
   }
 
-  const VJ& vertex(int body, int v) {
+  const VJT<N>& vertex(int body, int v) {
     auto& slot = verts_[body][static_cast<std::size_t>(v)];
     if (!slot) slot = p_[body].vertex(v);
     return *slot;
   }
-  const std::array<Ball, 2>& position(int body, int v) {
+  const std::array<N, 2>& position(int body, int v) {
     auto& slot = positions_[body][static_cast<std::size_t>(v)];
     if (!slot) slot = p_[body].position(v);
     return *slot;
   }
-  const Pose& pose(int body) const { return p_[body]; }
+  const PoseT<N>& pose(int body) const { return p_[body]; }
 
  private:
   const PairKin& pk_;
-  Pose p_[2];
-  std::vector<std::optional<VJ>> verts_[2];
-  std::vector<std::optional<std::array<Ball, 2>>> positions_[2];
+  PoseT<N> p_[2];
+  std::vector<std::optional<VJT<N>>> verts_[2];
+  std::vector<std::optional<std::array<N, 2>>> positions_[2];
 };
+using Posed = PosedT<Ball>;
 
 std::string undecided_text(const Feat& ft, const char* what) {
   return std::string("rotating contact undecided: ") + what + " (" + std::string(contact_kind_name(ft.id.contact)) + " " +
@@ -396,37 +491,39 @@ class RotatingRoot final : public TranscendentalRoot {
 // H = T - m, H2 = [0, h^2 / 2]): the discs they sweep as they turn stay apart, or, where one is a
 // fixed outline that does not turn (a wall, a floor: its disc would hold everything near it),
 // the other's disc stays beyond the line of one of its edges (a segment's either side).
-bool apart_over(const Kin& ka, const Kin& kb, const Pose& at, const Pose& am, const Pose& bt, const Pose& bm,
-                const Ball& H, const Ball& H2) {
-  const auto certainly_positive = [&](const Jet& gt, const Jet& gm) {
-    return meet(gm.v + gm.d * H + gt.dd * H2, gt.v).positive();
+template <class N>
+bool apart_over(const Kin& ka, const Kin& kb, const PoseT<N>& at, const PoseT<N>& am, const PoseT<N>& bt,
+                const PoseT<N>& bm, const N& H, const N& H2) {
+  using M = Num<N>;
+  const auto certainly_positive = [&](const JetT<N>& gt, const JetT<N>& gm) {
+    return M::positive(M::meet(gm.v + gm.d * H + gt.dd * H2, gt.v));
   };
   if (ka.fixed_outline != kb.fixed_outline) {
     const bool a_fixed = ka.fixed_outline;
     const Kin& wall = a_fixed ? ka : kb;
     const Kin& other = a_fixed ? kb : ka;
-    const VJ& ct = (a_fixed ? bt : at).centre();
-    const VJ& cm = (a_fixed ? bm : am).centre();
-    const VJ& w = (a_fixed ? at : bt).centre();  // constant: the outline's position
-    const Ball reach = sqrt(Ball(other.reach2));
+    const VJT<N>& ct = (a_fixed ? bt : at).centre();
+    const VJT<N>& cm = (a_fixed ? bm : am).centre();
+    const VJT<N>& w = (a_fixed ? at : bt).centre();  // constant: the outline's position
+    const N reach = M::root(M::exact(other.reach2));
     const int n = static_cast<int>(wall.verts.size());
     const int edges = wall.shape == ShapeKind::Segment ? 1 : n;
     for (int k = 0; k < edges; ++k) {
-      const auto& p = wall.verts[static_cast<std::size_t>(k)];
-      const auto& q = wall.verts[static_cast<std::size_t>((k + 1) % n)];
-      const Ball ex = q[0] - p[0], ey = q[1] - p[1];
-      const VJ A{constant(w.x.v + p[0]), constant(w.y.v + p[1])};
-      const VJ e{constant(ex), constant(ey)};
-      const Jet rl = constant(reach * sqrt(ex * ex + ey * ey));
-      const Jet st = cross(ct - A, e), sm = cross(cm - A, e);
+      const auto& p = M::vert(wall, k);
+      const auto& q = M::vert(wall, (k + 1) % n);
+      const N ex = q[0] - p[0], ey = q[1] - p[1];
+      const VJT<N> A{constant(N(w.x.v + p[0])), constant(N(w.y.v + p[1]))};
+      const VJT<N> e{constant(ex), constant(ey)};
+      const JetT<N> rl = constant(N(reach * M::root(ex * ex + ey * ey)));
+      const JetT<N> st = cross(ct - A, e), sm = cross(cm - A, e);
       if (certainly_positive(st - rl, sm - rl)) return true;
       if (wall.shape == ShapeKind::Segment && certainly_positive(negate(st) - rl, negate(sm) - rl)) return true;
     }
     return false;
   }
-  const VJ dt = bt.centre() - at.centre(), dm = bm.centre() - am.centre();
-  const Ball reach = sqrt(Ball(ka.reach2)) + sqrt(Ball(kb.reach2));
-  const Jet r2 = constant(reach * reach);
+  const VJT<N> dt = bt.centre() - at.centre(), dm = bm.centre() - am.centre();
+  const N reach = M::root(M::exact(ka.reach2)) + M::root(M::exact(kb.reach2));
+  const JetT<N> r2 = constant(N(reach * reach));
   return certainly_positive(dot(dt, dt) - r2, dot(dm, dm) - r2);
 }
 
@@ -479,51 +576,65 @@ class PairSearch {
     const Dyadic width = b - a;
     const Precision guard(prec_for(width));
     const Dyadic m = half(a + b), h = half(width);
-    const Ball T = Ball::hull(a, b), M(m), H = Ball::hull(-h, h), H2 = Ball::hull(Dyadic(), half(h * h));
-    Posed pt(*pk_, T), pm(*pk_, M);
-    if (apart_over(pk_->k[0], pk_->k[1], pt.pose(0), pm.pose(0), pt.pose(1), pm.pose(1), H, H2)) return;
-    std::vector<int> keep;
-    for (int i : live) {
-      const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
-      if (pt.apart_by_values(ft)) continue;
-      const Values vt = pt.values(ft), vm = pm.values(ft);
-      // Exactly zero over I (a vertex sliding along an edge's line, both at rest in angle): no
-      // crossing (oracle/README.md).
-      if (vt.f.v.exact_zero()) continue;
-      const Ball F = meet(vm.f.v + vm.f.d * H + vt.f.dd * H2, vt.f.v);
-      if (F.positive()) continue;
-      const Ball D = meet(vm.f.d + vt.f.dd * H, vt.f.d);
-      if (D.positive()) continue;
-      if (F.negative()) {  // below zero throughout: no downward crossing here, only the start's overlap
-        if (!a.is_zero() || vt.f.d.exact_zero()) continue;
-        const int d0 = sign_at_point(*pk_, ft, Ball(), Of::DF);
-        if (d0 > 0 || (d0 == 0 && sign_at_point(*pk_, ft, Ball(), Of::DDF) >= 0)) continue;  // not approaching
-      }
-      if (ft.to_edge) {
-        const Ball U = meet(vm.u.v + vt.u.d * H, vt.u.v);
-        if (U.negative() || (U - Ball(ft.len2)).positive()) continue;
-      }
-      if (D.negative()) {
-        resolve(i, a, b, vm, vt, h, H2);
-        continue;
-      }
-      // f'' of one sign on I: f' is monotone, and its signs at the ends (exact) may settle the
-      // shape: an end where f' is exactly zero (a tangency at a dyadic time, as in a graze
-      // placed on purpose) is then decided, where the enclosures never could.
-      const int curvature = vt.f.dd.positive() ? 1 : (vt.f.dd.negative() ? -1 : 0);
-      if (curvature != 0) {
-        const int da = sign_at_point(*pk_, ft, Ball(a), Of::DF), db = sign_at_point(*pk_, ft, Ball(b), Of::DF);
-        if ((curvature > 0 && da >= 0) || (curvature < 0 && db >= 0)) continue;  // f' > 0 inside: increasing
-        if ((curvature > 0 && db <= 0) || (curvature < 0 && da <= 0)) {  // f' < 0 but at an end
-          resolve(i, a, b, vm, vt, h, H2);
-          continue;
-        }
-      }
-      keep.push_back(i);
-    }
-    if (keep.empty()) return;
+    // The quick pass in double intervals: the pair apart, or a feature dropped by its values or
+    // by the same Taylor forms as below. Only what it leaves is taken to Arb's balls.
+    const Interval Ti = hull(Interval::enclose(a), Interval::enclose(b)), Mi = Interval::enclose(m);
+    const Interval Hi = Ti - Mi, H2i = square(Hi) * Interval(0.5);
+    PosedT<Interval> qt(*pk_, Ti), qm(*pk_, Mi);
+    if (apart_over(pk_->kin(0), pk_->kin(1), qt.pose(0), qm.pose(0), qt.pose(1), qm.pose(1), Hi, H2i)) return;
+    // Intervals wide enough for doubles decide in doubles; tiny ones (or the start's, which
+    // needs exact signs at tau = 0) go on to Arb's balls.
     Dyadic scale = b.abs();
     if (scale < Dyadic(1)) scale = Dyadic(1);
+    const bool tiny = a.is_zero() || width <= scale * Dyadic(1).scaled(-kQuickBits);
+    const Interval hi_h = Interval::enclose(h);
+    std::vector<int> slow, keep;
+    for (int i : live) {
+      const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
+      if (qt.apart_by_values(ft)) continue;
+      const ValuesT<Interval> it = qt.values(ft), im = qm.values(ft);
+      using MI = Num<Interval>;
+      const Interval F = MI::meet(im.f.v + im.f.d * Hi + it.f.dd * H2i, it.f.v);
+      if (F.certainly_positive() || (F.certainly_negative() && !a.is_zero())) continue;
+      const Interval D = MI::meet(im.f.d + it.f.dd * Hi, it.f.d);
+      if (D.certainly_positive()) continue;
+      if (ft.to_edge) {
+        const Interval U = MI::meet(im.u.v + it.u.d * Hi, it.u.v);
+        if (U.certainly_negative() || (U - Num<Interval>::len2(pk_->kin(ft.eb), ft.ek)).certainly_positive()) continue;
+      }
+      if (tiny) {
+        slow.push_back(i);
+      } else if (!settle(i, a, b, im, it, D, hi_h, H2i)) {
+        keep.push_back(i);
+      }
+    }
+    if (!slow.empty()) {
+      const Ball T = Ball::hull(a, b), M(m), H = Ball::hull(-h, h), H2 = Ball::hull(Dyadic(), half(h * h));
+      Posed pt(*pk_, T), pm(*pk_, M);
+      for (int i : slow) {
+        const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
+        if (pt.apart_by_values(ft)) continue;
+        const Values vt = pt.values(ft), vm = pm.values(ft);
+        // Exactly zero over I (a vertex sliding along an edge's line, both at rest in angle): no
+        // crossing (oracle/README.md).
+        if (vt.f.v.exact_zero()) continue;
+        const Ball F = meet(vm.f.v + vm.f.d * H + vt.f.dd * H2, vt.f.v);
+        if (F.positive()) continue;
+        const Ball D = meet(vm.f.d + vt.f.dd * H, vt.f.d);
+        if (D.positive()) continue;
+        if (F.negative()) {  // below zero throughout: no downward crossing here, only the start's overlap
+          if (!a.is_zero() || vt.f.d.exact_zero()) continue;
+          const int d0 = sign_at_point(*pk_, ft, Ball(), Of::DF);
+          if (d0 > 0 || (d0 == 0 && sign_at_point(*pk_, ft, Ball(), Of::DDF) >= 0)) continue;  // not approaching
+        }
+        if (ft.to_edge) {
+          const Ball U = meet(vm.u.v + vt.u.d * H, vt.u.v);
+          if (U.negative() || (U - Num<Ball>::len2(pk_->kin(ft.eb), ft.ek)).positive()) continue;
+        }
+        if (!settle(i, a, b, vm, vt, D, Ball(h), H2)) keep.push_back(i);
+      }
+    }
+    if (keep.empty()) return;
     if (width <= scale * Dyadic(1).scaled(-kRotatingTangencyBits))
       throw UndecidedTime(undecided_text(pk_->feats[static_cast<std::size_t>(keep.front())], "a tangency"));
     visit(a, m, keep);
@@ -533,16 +644,42 @@ class PairSearch {
   // f decreasing on [a, b] (f' < 0 but perhaps at an end): at most one root there. A root at a
   // dyadic end is a downward crossing only where f' < 0; where f' = 0 too it is a tangency: at
   // tau = 0 a contact if f'' < 0 (approaching at second order), elsewhere a graze.
+  // A feature still live on [a, b] whose f' enclosure D is not positive: settled (true) if f'
+  // < 0 there (resolve), or if f'' has one sign and the exact signs of f' at the ends show f
+  // increasing (dropped) or decreasing (resolve): an end where f' is exactly zero (a tangency at
+  // a dyadic time, as in a graze placed on purpose) is decided so, where enclosures never could.
+  template <class N>
+  bool settle(int i, const Dyadic& a, const Dyadic& b, const ValuesT<N>& vm, const ValuesT<N>& vt, const N& D,
+              const N& h, const N& H2) {
+    using M = Num<N>;
+    if (M::negative(D)) {
+      resolve(i, a, b, vm, vt, h, H2);
+      return true;
+    }
+    const int curvature = M::positive(vt.f.dd) ? 1 : (M::negative(vt.f.dd) ? -1 : 0);
+    if (curvature == 0) return false;
+    const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
+    const int da = sign_at_point(*pk_, ft, Ball(a), Of::DF), db = sign_at_point(*pk_, ft, Ball(b), Of::DF);
+    if ((curvature > 0 && da >= 0) || (curvature < 0 && db >= 0)) return true;  // f' > 0 inside: increasing
+    if ((curvature > 0 && db <= 0) || (curvature < 0 && da <= 0)) {            // f' < 0 but at an end
+      resolve(i, a, b, vm, vt, h, H2);
+      return true;
+    }
+    return false;
+  }
+
   // vm, vt: the jets at the midpoint and over [a, b]; f at an end is first tried from the Taylor
   // form there, f(m) +- f'(m) h + f''(I) [0, h^2 / 2], and taken at the point only if that holds 0.
-  void resolve(int i, const Dyadic& a, const Dyadic& b, const Values& vm, const Values& vt, const Dyadic& h,
-               const Ball& H2) {
+  template <class N>
+  void resolve(int i, const Dyadic& a, const Dyadic& b, const ValuesT<N>& vm, const ValuesT<N>& vt, const N& h,
+               const N& H2) {
+    using M = Num<N>;
     const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
     const auto end_sign = [&](const Dyadic& x, int side) {
-      const Ball hb(h);
-      const Ball f = vm.f.v + (side > 0 ? vm.f.d * hb : -(vm.f.d * hb)) + vt.f.dd * H2;
-      if (f.positive()) return 1;
-      if (f.negative()) return -1;
+      const N step = vm.f.d * h;
+      const N f = vm.f.v + (side > 0 ? step : -step) + vt.f.dd * H2;
+      if (M::positive(f)) return 1;
+      if (M::negative(f)) return -1;
       return sign_at_point(*pk_, ft, Ball(x));
     };
     const int sb = end_sign(b, 1);
@@ -582,7 +719,7 @@ class PairSearch {
   // segment from being met from its far side by a body that already touches its near side).
   bool extreme_at(const RotatingRoot& r) const {
     const Feat& ft = r.feature();
-    const Kin& kp = pk_->k[ft.pb];
+    const Kin& kp = pk_->kin(ft.pb);
     const int n = static_cast<int>(kp.verts.size());
     const int neighbours[2] = {(ft.pv + n - 1) % n, (ft.pv + 1) % n};
     for (long bits = 32;; bits += 32) {
@@ -592,7 +729,7 @@ class PairSearch {
         Posed ps(*pk_, r.lo() == r.hi() ? Ball(r.lo()) : Ball::hull(r.lo(), r.hi()));
         const VJ& v = ps.vertex(ft.pb, ft.pv);
         const VJ& A = ps.vertex(ft.eb, ft.ek);
-        const VJ e = ps.vertex(ft.eb, (ft.ek + 1) % static_cast<int>(pk_->k[ft.eb].verts.size())) - A;
+        const VJ e = ps.vertex(ft.eb, (ft.ek + 1) % static_cast<int>(pk_->kin(ft.eb).verts.size())) - A;
         for (int nb : neighbours) {
           if (nb == ft.pv) continue;
           Ball q = cross(ps.vertex(ft.pb, nb) - v, e).v;
@@ -615,7 +752,7 @@ class PairSearch {
     for (long bits = 32;; bits += 32) {
       if (r.lo() == r.hi()) {
         const int s0 = sign_at_point(*pk_, ft, Ball(r.lo()), Of::U);
-        const int s1 = sign_at_point(*pk_, ft, Ball(r.lo()), Of::U, ft.len2);
+        const int s1 = sign_at_point(*pk_, ft, Ball(r.lo()), Of::U, pk_->kin(ft.eb).len2[static_cast<std::size_t>(ft.ek)]);
         if (s0 == 0 || s1 == 0) throw UndecidedTime(undecided_text(ft, "a contact at an edge's end"));
         return s0 > 0 && s1 < 0;
       }
@@ -623,8 +760,8 @@ class PairSearch {
         const Precision guard(std::min<slong>(bits + 96, kRotatingMaxPrecision));
         Posed ps(*pk_, Ball::hull(r.lo(), r.hi()));
         const Ball U = ps.values(ft).u.v;
-        if (U.negative() || (U - Ball(ft.len2)).positive()) return false;
-        if (U.positive() && (U - Ball(ft.len2)).negative()) return true;
+        if (U.negative() || (U - Num<Ball>::len2(pk_->kin(ft.eb), ft.ek)).positive()) return false;
+        if (U.positive() && (U - Num<Ball>::len2(pk_->kin(ft.eb), ft.ek)).negative()) return true;
       }
       if (bits > kTranscendentalTieBits) throw UndecidedTime(undecided_text(ft, "a contact at an edge's end"));
       Dyadic span = r.hi() - r.lo();
@@ -635,7 +772,7 @@ class PairSearch {
 
   bool on_edge_at_start(const Feat& ft) const {
     const int s0 = sign_at_point(*pk_, ft, Ball(), Of::U);
-    const int s1 = sign_at_point(*pk_, ft, Ball(), Of::U, ft.len2);
+    const int s1 = sign_at_point(*pk_, ft, Ball(), Of::U, pk_->kin(ft.eb).len2[static_cast<std::size_t>(ft.ek)]);
     if (s0 == 0 || s1 == 0) throw UndecidedTime(undecided_text(ft, "a contact at an edge's end"));
     return s0 > 0 && s1 < 0;
   }
@@ -644,17 +781,24 @@ class PairSearch {
   // against the edge of least penetration only, and only as its body's deepest vertex along it;
   // a circle against a one-sided edge only from outside the edge line.
   bool overlap_applies(const Feat& ft) const {
-    const Precision guard(512);
-    Posed ps(*pk_, Ball());
     if (!ft.to_edge) return true;
-    const Kin& ke = pk_->k[ft.eb];
-    const auto distance = [&](const Feat& g) {  // sigma cross / |e|, the signed distance of the point
-      Values v = ps.values(g);
-      Ball f = v.f.v;
-      if (g.pv < 0) f = f + pk_->k[g.pb].radius * sqrt(Ball(g.len2));
-      return f / sqrt(Ball(g.len2));
+    const Precision guard(512);
+    if (!start_pose_) {
+      start_pose_.emplace(*pk_, Ball());
+      start_distance_.resize(pk_->feats.size());
+    }
+    const Kin& ke = pk_->kin(ft.eb);
+    // sigma cross / |e|, the signed distance of the point at tau = 0: each once per search.
+    const auto distance = [&](const Feat& g) -> const Ball& {
+      std::optional<Ball>& slot = start_distance_[static_cast<std::size_t>(&g - pk_->feats.data())];
+      if (!slot) {
+        Ball f = start_pose_->values(g).f.v;
+        if (g.pv < 0) f = f + pk_->kin(g.pb).radius * Num<Ball>::elen(pk_->kin(g.eb), g.ek);
+        slot = f / Num<Ball>::elen(pk_->kin(g.eb), g.ek);
+      }
+      return *slot;
     };
-    const Ball mine = distance(ft);
+    const Ball& mine = distance(ft);
     if (ft.pv < 0) return !mine.negative();  // the centre not behind the line (on the side measured from)
     // Against a segment (no inside, two sides): the body must lie more on the side measured from
     // than behind the line, the least penetration: its highest vertex above the line at least as
@@ -689,6 +833,8 @@ class PairSearch {
 
   std::shared_ptr<const PairKin> pk_;
   SearchCounters& n_;
+  mutable std::optional<Posed> start_pose_;  // overlap_applies: the pair at tau = 0, 512 bits
+  mutable std::vector<std::optional<Ball>> start_distance_;
   std::optional<Best> best_;
 
  public:
@@ -712,7 +858,8 @@ std::optional<Dyadic> rotating_graze(Frame& fr, BodyIndex a, BodyIndex b, const 
 
 bool rotating_may_touch(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_hi) {
   if (tau_hi.sign() <= 0) return true;
-  const Kin ka = kin_of(fr, a), kb = kin_of(fr, b);
+  const std::shared_ptr<const Kin> pa = kin_of(fr, a), pb = kin_of(fr, b);
+  const Kin &ka = *pa, &kb = *pb;
   const Precision guard(80);
   const Dyadic h = half(tau_hi);
   const Ball T = Ball::hull(Dyadic(), tau_hi), M(h), H = Ball::hull(-h, h), H2 = Ball::hull(Dyadic(), half(h * h));
@@ -728,12 +875,12 @@ GapMeasure rotating_gap(Frame& fr, BodyIndex a, BodyIndex b, const FeaturePair& 
   for (const Feat& ft : pk->feats) {
     if (!(ft.id == id)) continue;
     const Values v = ps.values(ft);
-    const double r = ft.pv < 0 ? pk->k[ft.pb].radius.mid_double() : 0.0;
+    const double r = ft.pv < 0 ? pk->kin(ft.pb).radius.mid_double() : 0.0;
     double gap = 0;
     if (ft.to_edge) {
-      gap = (v.f.v / sqrt(Ball(ft.len2))).mid_double();
+      gap = (v.f.v / Num<Ball>::elen(pk->kin(ft.eb), ft.ek)).mid_double();
     } else {
-      const double d2 = (v.f.v + pk->k[ft.pb].radius * pk->k[ft.pb].radius).mid_double();
+      const double d2 = (v.f.v + pk->kin(ft.pb).radius * pk->kin(ft.pb).radius).mid_double();
       gap = std::sqrt(std::max(d2, 0.0)) - r;
     }
     if (!out || std::abs(gap) < std::abs(out->gap)) out = GapMeasure{gap, r};

@@ -41,6 +41,10 @@ GapMeasure rotating_gap(Frame& fr, BodyIndex a, BodyIndex b, const FeaturePair& 
 // on) on which a contact function and its derivative both still hold zero is a tangency the
 // referee cannot resolve: undecided.
 inline constexpr long kRotatingTangencyBits = 100;
+// Intervals narrower than 2^-kQuickBits (relative, as above) are tested in Arb's balls only: in
+// double intervals the rounding of the functions' terms (about 2^-52 of them) would hide the
+// Taylor forms' shrinking there.
+inline constexpr long kQuickBits = 36;
 // The highest working precision (bits) a sign is decided at before it is undecided.
 inline constexpr long kRotatingMaxPrecision = 4096;
 
