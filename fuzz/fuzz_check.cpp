@@ -27,9 +27,6 @@ void fail_with_scene(std::string_view target, const std::string& what, const Sce
 bool check_scene(const Scene& scene, std::string_view target) {
   if (validate_scene(scene)) return false;
   if (scene.bodies.size() > kFuzzMaxBodies) return false;
-  // Rotating scenes are left to a later round: the referee judges them (oracle/README.md,
-  // "Rotation"), but at tens of events per second, too slow for a fuzzer's budget yet.
-  if (std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const BodyDesc& b) { return b.rotates; })) return false;
   Scene run = scene;
   run.run.until = std::min(run.run.until, kFuzzUntil);
   run.run.max_events = std::min(run.run.max_events, kFuzzMaxEvents);

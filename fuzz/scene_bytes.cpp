@@ -20,6 +20,7 @@ constexpr std::uint8_t kNoGravity = 0x08;
 constexpr std::uint8_t kOwnRestitution = 0x10;
 constexpr std::uint8_t kHasAcceleration = 0x20;
 constexpr std::uint8_t kHasVelocity = 0x40;
+constexpr std::uint8_t kTurns = 0x80;  // a polygon or segment that rotates: angle and rate follow
 // Polygon mode byte: even generates a convex polygon on an ellipse, odd lists the vertices.
 constexpr std::uint8_t kExplicitVertices = 0x01;
 // Number tags: below kTagShort a one-byte number on a grid of 1/8 in [-8, 8); from kTagShort to
@@ -136,6 +137,11 @@ Scene decode_scene(std::span<const std::uint8_t> bytes) {
       b.mass = in.number();
     }
     if (bf & kOwnRestitution) b.restitution = in.number();
+    if ((bf & kTurns) && b.shape != ShapeKind::Circle) {
+      b.rotates = true;
+      b.angle = in.number();
+      b.angular_velocity = in.number();
+    }
     s.bodies.push_back(std::move(b));
   }
   return s;
@@ -169,6 +175,7 @@ std::vector<std::uint8_t> encode_scene(const Scene& scene) {
     if (!b.gravity) bf |= kNoGravity;
     if (!(b.restitution < 0)) bf |= kOwnRestitution;  // -0.0 is a restitution of its own
     if (!b.fixed) bf |= kHasVelocity | kHasAcceleration;
+    if (b.rotates && b.shape != ShapeKind::Circle) bf |= kTurns;
     out.byte(bf);
     switch (b.shape) {
       case ShapeKind::Segment:
@@ -189,6 +196,10 @@ std::vector<std::uint8_t> encode_scene(const Scene& scene) {
       out.number(b.mass);
     }
     if (bf & kOwnRestitution) out.number(b.restitution);
+    if (bf & kTurns) {
+      out.number(b.angle);
+      out.number(b.angular_velocity);
+    }
   }
   return std::move(out.out);
 }
