@@ -199,5 +199,19 @@ TEST(RotationReferee, CatchesAnImpulseWithoutLeverArmsInTheEnergy) {
   EXPECT_LT(std::abs(right.conservation.energy_change.to_double()) / right.conservation.kinetic_before, 1e-14);
 }
 
+TEST(RotationReferee, MeasuresASegmentsGapFromTheSideTheBodyIsOn) {
+  // The wall is a segment: two-sided. An engine event faked at t = 0.1, before the box's corner
+  // (0.5, -0.5), turned 0.1 rad, reaches it: the corner is at x = 0.5 (cos 0.1 + sin 0.1) =
+  // 0.54738, 0.05262 short of the wall at 0.6 (the double nearest), on the box's side: a gap of
+  // +0.05262, which measured from the wall's other side would be -0.05262.
+  const Recorded real = first_event(square_and_wall(2));
+  const World<double> world(square_and_wall(2));
+  Referee referee(exact_state(world));
+  ExactEvent e = exact_event(real.info);
+  e.time = Dyadic::from(0.1);
+  const Judgement j = referee.judge(e, real.a_after, real.b_after);
+  EXPECT_NEAR(j.gap, 0.6 - 0.5 * (std::cos(0.1) + std::sin(0.1)), 1e-15);
+}
+
 }  // namespace
 }  // namespace pge::oracle

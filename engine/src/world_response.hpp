@@ -101,8 +101,14 @@ inline auto World<T>::Impl::collision_info(const Scheduled<T>& s, const Kinemati
   info.a = s.lo;
   info.b = s.hi;
   info.contact = s.contact;
-  info.feature_a = s.contact == ContactKind::EdgeVertex ? public_edge(bodies[s.lo].shape, s.feature_a) : s.feature_a;
-  info.feature_b = s.contact == ContactKind::VertexEdge ? public_edge(bodies[s.hi].shape, s.feature_b) : s.feature_b;
+  // The edge's public index (event.hpp): a segment's one edge is 0, struck from either side,
+  // where a predictor may name its far side edge 1 (the rotating one, an outline of two vertices
+  // having two edges). In a circle-edge contact the edge is the circle's partner's.
+  const bool circle_lo = bodies[s.lo].shape.kind == ShapeKind::Circle;
+  const bool edge_on_lo = s.contact == ContactKind::EdgeVertex || (s.contact == ContactKind::CircleEdge && !circle_lo);
+  const bool edge_on_hi = s.contact == ContactKind::VertexEdge || (s.contact == ContactKind::CircleEdge && circle_lo);
+  info.feature_a = edge_on_lo ? public_edge(bodies[s.lo].shape, s.feature_a) : s.feature_a;
+  info.feature_b = edge_on_hi ? public_edge(bodies[s.hi].shape, s.feature_b) : s.feature_b;
   info.corner = s.corner;
   info.at_start_overlap = s.at_start_overlap;
   info.va_before = ka.v;

@@ -3,6 +3,7 @@
 #include "judging.hpp"
 #include "rotating.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -26,6 +27,13 @@ Dyadic energy(const Dyadic& mass, const ExactVec& v, const ExactVec& field, cons
 }
 
 double length(const ExactVec& v) { return std::sqrt(dot(v, v).to_double()); }
+
+// The largest distance of a point of the body from its reference point (a rotating body's pivot).
+double reach_of(const ExactBody& b) {
+  double r = b.radius.to_double();
+  for (const ExactVec& v : b.local) r = std::max(r, length(v));
+  return r;
+}
 
 }  // namespace
 
@@ -56,8 +64,16 @@ Conservation measure_conservation(const ExactBody& a, const ExactBody& b, const 
       const ExactVec p_before = position_at(s.body.motion, e.time), p_after = position_at(s.motion_after, e.time);
       c.angular_momentum_change += s.body.inertia * (s.w_after - s.w_before) +
                                    s.body.mass * (cross(p_after, s.after) - cross(p_before, s.before));
-      c.angular_scale += std::abs((s.body.inertia * s.w_before).to_double()) +
-                         std::abs((s.body.mass * cross(p_before, s.before)).to_double());
+      // What rounding the impulse in doubles leaves in the change, body by body: each new spin
+      // and velocity rounded (I |w'| and m |p| |v'|), the spin's and the momentum's change rounded
+      // (I |dw|, m |p| |dv|), the two lever arms meeting at one point only within rounding of
+      // the bodies' coordinates (m (|p| + reach) |dv|), the position rebased (m |p| |v'|):
+      // I (|w| + |w'|) + m (|p| + reach) (|v| + |v'|), with |dw| <= |w| + |w'| and likewise dv.
+      // (|I w| + m |p x v| alone is no scale: 0 for a body moving along a line through the
+      // origin and barely turning, where the roundings are not.)
+      c.angular_scale += s.body.inertia.to_double() * (std::abs(s.w_before.to_double()) + std::abs(s.w_after.to_double())) +
+                         s.body.mass.to_double() * (length(p_before) + reach_of(s.body)) *
+                             (length(s.before) + length(s.after));
     }
     c.momentum_change.x += s.body.mass * (s.after.x - s.before.x);
     c.momentum_change.y += s.body.mass * (s.after.y - s.before.y);

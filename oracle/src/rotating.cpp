@@ -800,6 +800,7 @@ class PairSearch {
     };
     const Ball& mine = distance(ft);
     if (ft.pv < 0) return !mine.negative();  // the centre not behind the line (on the side measured from)
+    if (shallower_axis(ft, mine, distance)) return false;
     // Against a segment (no inside, two sides): the body must lie more on the side measured from
     // than behind the line, the least penetration: its highest vertex above the line at least as
     // far as this one, its deepest, is below it.
@@ -812,6 +813,26 @@ class PairSearch {
       if (g.ek == ft.ek && g.pv != ft.pv && (mine - distance(g)).positive()) return false;  // a deeper vertex
     }
     return ke.shape != ShapeKind::Segment || shallow_side;
+  }
+
+  // The separating-axis view of the translating rule (overlap_rule.hpp): every edge line of
+  // either outline, from each side it is struck on, is an axis whose depth is the least signed
+  // distance of the other outline's vertices from it. An axis other than the feature's own that
+  // is certainly shallower than the vertex's depth behind its edge (a separating axis, depth
+  // > 0, among them) says the overlap is not along this edge. Without it a segment touching
+  // another end to side (a rod's end on a wall) leaves the wall's far end metres behind the
+  // rod's line, projecting onto the rod, and that was taken for an overlap.
+  template <class Distance>
+  bool shallower_axis(const Feat& ft, const Ball& mine, const Distance& distance) const {
+    const auto same_axis = [](const Feat& g, const Feat& h) { return g.eb == h.eb && g.ek == h.ek && g.sigma == h.sigma; };
+    for (const Feat& axis : pk_->feats) {
+      if (!axis.to_edge || axis.pv < 0 || same_axis(axis, ft)) continue;
+      bool shallower = true;
+      for (const Feat& g : pk_->feats)
+        if (g.to_edge && g.pv >= 0 && same_axis(g, axis) && !(distance(g) - mine).positive()) shallower = false;
+      if (shallower) return true;
+    }
+    return false;
   }
 
   void offer(const std::shared_ptr<const RotatingRoot>& root, int i, bool overlap) {
@@ -867,23 +888,46 @@ bool rotating_may_touch(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_h
   return !apart_over(ka, kb, at, am, bt, bm, H, H2);
 }
 
+double rotating_pair_scale(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau) {
+  const Precision guard(64);
+  double scale = 0;
+  for (BodyIndex i : {a, b}) {
+    const std::shared_ptr<const Kin> k = kin_of(fr, i);
+    const VJ c = Pose(*k, Ball(tau)).centre();
+    const double reach = std::sqrt(k->reach2.to_double());
+    scale = std::max(scale, std::max(std::abs(c.x.v.mid_double()), std::abs(c.y.v.mid_double())) + reach);
+  }
+  return scale;
+}
+
 GapMeasure rotating_gap(Frame& fr, BodyIndex a, BodyIndex b, const FeaturePair& id, const Dyadic& tau) {
   const std::shared_ptr<PairKin> pk = pair_kin(fr, a, b);
   const Precision guard(128);
   Posed ps(*pk, Ball(tau));
   std::optional<GapMeasure> out;
+  bool out_facing = false;
   for (const Feat& ft : pk->feats) {
     if (!(ft.id == id)) continue;
     const Values v = ps.values(ft);
     const double r = ft.pv < 0 ? pk->kin(ft.pb).radius.mid_double() : 0.0;
     double gap = 0;
+    // A segment's edge is measured from the side the point's body lies on (its centre): from the
+    // other side every gap has the wrong sign.
+    bool facing = true;
     if (ft.to_edge) {
       gap = (v.f.v / Num<Ball>::elen(pk->kin(ft.eb), ft.ek)).mid_double();
+      const int n = static_cast<int>(pk->kin(ft.eb).verts.size());
+      const VJ& A = ps.vertex(ft.eb, ft.ek);
+      const Ball side = cross(ps.pose(ft.pb).centre() - A, ps.vertex(ft.eb, (ft.ek + 1) % n) - A).v;
+      facing = ft.sigma > 0 ? side.positive() : side.negative();
     } else {
       const double d2 = (v.f.v + pk->kin(ft.pb).radius * pk->kin(ft.pb).radius).mid_double();
       gap = std::sqrt(std::max(d2, 0.0)) - r;
     }
-    if (!out || std::abs(gap) < std::abs(out->gap)) out = GapMeasure{gap, r};
+    if (!out || (facing && !out_facing) || (facing == out_facing && std::abs(gap) < std::abs(out->gap))) {
+      out = GapMeasure{gap, r};
+      out_facing = facing;
+    }
   }
   if (!out) return {std::numeric_limits<double>::quiet_NaN(), 0.0};
   return *out;

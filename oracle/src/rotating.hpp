@@ -34,6 +34,10 @@ std::optional<Dyadic> rotating_graze(Frame& fr, BodyIndex a, BodyIndex b, const 
 // as they turn stay apart (the filter in front of rotating_pair_contact).
 bool rotating_may_touch(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_hi);
 
+// The pair's coordinate scale at tau (length units): the larger of each body's largest centre
+// coordinate plus its reach, what rounding the bodies' coordinates is relative to.
+double rotating_pair_scale(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau);
+
 // The engine's features at tau, as measure_gap (judging.hpp).
 GapMeasure rotating_gap(Frame& fr, BodyIndex a, BodyIndex b, const FeaturePair& id, const Dyadic& tau);
 

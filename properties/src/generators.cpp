@@ -5,7 +5,8 @@
 // The y coordinates are never shifted, which keeps a one-ulp near-graze intact.
 #include "pge/generators.hpp"
 
-#include "pge/scene_io.hpp"
+#include "scene_parts.hpp"
+
 #include "pge/validate.hpp"
 
 #include <algorithm>
@@ -16,30 +17,10 @@
 namespace pge {
 namespace {
 
-// Unit-scale motif coordinates are multiples of 2^-kQuantumBits and smaller than 2^kExtentBits.
-constexpr int kQuantumBits = 20;
+using namespace scene_parts;
+
 constexpr double kExtent = 16;      // every motif fits in [-16, 16] x [-16, 16] at unit scale
 constexpr double kGap = 4;          // space between motifs, at the larger motif's scale
-
-double quantize(double x, int bits = kQuantumBits) { return std::ldexp(std::nearbyint(std::ldexp(x, bits)), -bits); }
-
-// rapidcheck scales integer ranges with its size parameter (small early cases); choices and
-// parameters here use the whole range at every size, so that every kind is generated from the
-// start. The number of motifs still grows with the size.
-constexpr int kFullSize = 100;
-template <class T> rc::Gen<T> uniform_in(T lo, T hi) { return rc::gen::resize(kFullSize, rc::gen::inRange<T>(lo, hi)); }
-
-// A parameter in [-1, 1] (or [0, 1]) with `bits` bits after the point; shrinks towards 0.
-rc::Gen<double> gen_signed(int bits) {
-  const int n = 1 << bits;
-  return rc::gen::map(uniform_in(0, 2 * n + 1), [bits](int k) {
-    const int v = (k % 2 == 1) ? -(k + 1) / 2 : k / 2;  // 0, -1, 1, -2, 2, ...
-    return std::ldexp(static_cast<double>(v), -bits);
-  });
-}
-rc::Gen<double> gen_unit(int bits) {
-  return rc::gen::map(uniform_in(0, (1 << bits) + 1), [bits](int k) { return std::ldexp(double(k), -bits); });
-}
 
 struct MotifSpec {
   Motif kind = Motif::Free;
@@ -56,51 +37,6 @@ struct MotifSpec {
   bool own_acceleration = true;  // floor motifs: pressed by an acceleration of their own
   bool inelastic = true;         // floor motifs: restitution below 1 allowed
 };
-
-BodyDesc circle_body(double r, Vec2d p, Vec2d v, double mass) {
-  BodyDesc b;
-  b.shape = ShapeKind::Circle;
-  b.radius = r;
-  b.position = p;
-  b.velocity = v;
-  b.mass = mass;
-  return b;
-}
-
-BodyDesc box_body(double hx, double hy, Vec2d p, Vec2d v, double mass) {
-  BodyDesc b;
-  b.shape = ShapeKind::Polygon;
-  b.vertices = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
-  b.position = p;
-  b.velocity = v;
-  b.mass = mass;
-  return b;
-}
-
-BodyDesc triangle_body(double h, Vec2d p, Vec2d v, double mass) {
-  BodyDesc b;
-  b.shape = ShapeKind::Polygon;
-  b.vertices = {{-h, -h}, {h, -h}, {0, h}};
-  b.position = p;
-  b.velocity = v;
-  b.mass = mass;
-  return b;
-}
-
-BodyDesc fixed_segment(Vec2d a, Vec2d b) {
-  BodyDesc s;
-  s.shape = ShapeKind::Segment;
-  s.a = a;
-  s.b = b;
-  s.fixed = true;
-  return s;
-}
-
-void make_fixed(BodyDesc& b) {
-  b.fixed = true;
-  b.velocity = {};
-  b.acceleration = {};
-}
 
 // The motifs on a floor (RestSlide, TileJoint, Stack): what games are made of. The floor's top
 // is y = 0: one segment or fixed box, or (TileJoint) two of them meeting at a joint x = j; the
@@ -270,19 +206,6 @@ std::vector<BodyDesc> realize(const MotifSpec& m) {
   return out;
 }
 
-// Scales a body by 2^k (exact) and moves it by dx along x (exact for quantised coordinates).
-void place(BodyDesc& b, int k, double dx) {
-  auto s = [k](Vec2d v) { return Vec2d{std::ldexp(v.x, k), std::ldexp(v.y, k)}; };
-  b.radius = std::ldexp(b.radius, k);
-  b.a = s(b.a);
-  b.b = s(b.b);
-  for (Vec2d& v : b.vertices) v = s(v);
-  b.position = s(b.position);
-  b.position.x += dx;
-  b.velocity = s(b.velocity);
-  b.acceleration = s(b.acceleration);
-}
-
 rc::Gen<Motif> gen_motif_kind(const GenOptions& o) {
   std::vector<Motif> allowed;
   for (int k = 0; k < static_cast<int>(Motif::Count); ++k) {
@@ -292,7 +215,7 @@ rc::Gen<Motif> gen_motif_kind(const GenOptions& o) {
     allowed.push_back(m);
   }
   if (allowed.empty()) allowed.push_back(Motif::Free);
-  return rc::gen::map(uniform_in<std::size_t>(0, allowed.size()), [allowed](std::size_t k) { return allowed[k]; });
+  return one_of(std::move(allowed));
 }
 
 rc::Gen<MotifSpec> gen_motif(const GenOptions& o, bool elastic_only, bool with_accel) {
@@ -342,11 +265,7 @@ std::string_view motif_name(Motif m) {
   return "?";
 }
 
-void print_generated(const GeneratedScene& g, std::ostream& os) {
-  os << "motifs:";
-  for (Motif m : g.motifs) os << ' ' << motif_name(m);
-  os << "\nscene JSON:\n" << write_scene(g.scene);
-}
+void print_generated(const GeneratedScene& g, std::ostream& os) { print_motifs_and_scene(os, g.motifs, motif_name, g.scene); }
 
 rc::Gen<GeneratedScene> gen_scene(const GenOptions& o) {
   return rc::gen::exec([o]() {
@@ -375,16 +294,7 @@ rc::Gen<GeneratedScene> gen_scene(const GenOptions& o) {
       g.motifs.push_back(m.kind);
       min_exp = std::min(min_exp, m.scale_exp);
       max_exp = std::max(max_exp, m.scale_exp);
-      const double half = std::ldexp(kExtent, m.scale_exp);
-      if (i > 0) x += half + std::ldexp(kGap, m.scale_exp);
-      std::vector<BodyDesc> bodies = realize(m);
-      for (std::size_t k = 0; k < bodies.size(); ++k) {
-        BodyDesc& b = bodies[k];
-        b.id = "m" + std::to_string(i) + "-" + std::to_string(k);
-        place(b, m.scale_exp, x);
-      }
-      s.bodies.insert(s.bodies.end(), bodies.begin(), bodies.end());
-      x += half;
+      const double half = append_motif(s, realize(m), i, m.scale_exp, kExtent, kGap, x);
       lowest = std::min(lowest, -half);
     }
     g.mixed_scale = max_exp != min_exp;

@@ -97,7 +97,9 @@ struct Conservation {
   // engine's doubles, and the pivot, the centre of mass, moves on its polynomial path). Angular
   // momentum about the origin, I omega + m p x v summed over the moving bodies, is conserved when
   // both move and neither is an outline that does not turn (whose constraint absorbs torque):
-  // then `angular` is set and the change is exact, with its scale sum |I omega| + m |p x v|.
+  // then `angular` is set and the change is exact. Its scale is what rounding the impulse in
+  // doubles can leave in it, summed over both bodies: I (|omega| + |omega'|) + m (|p| + reach)
+  // (|v| + |v'|), before and after, the reach being the body's largest distance from its pivot.
   bool angular = false;
   Dyadic angular_momentum_change;
   double angular_scale = 0;
