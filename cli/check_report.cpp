@@ -240,6 +240,7 @@ void print_summary(const SceneCheck& c, const Scene& s) {
   if (c.judged) {
     std::string end = "not checked (the run stopped before its horizon)";
     if (c.end_checked && !c.end.miss) end = "no contact left before the horizon";
+    if (c.end_checked && c.end.undecided) end = "undecided (" + c.end.undecided_reason + ")";
     if (c.end.miss && !c.end.next.pairs.empty())
       end = fmt::format("MISS: pair {} touches at {} before the horizon",
                         pair_text(s, c.end.next.pairs[0].a, c.end.next.pairs[0].b), c.end.next.time->decimal(20));
@@ -302,6 +303,7 @@ nlohmann::json summary_json(const SceneCheck& c, const Scene& s) {
     j["verdicts"][std::string(oracle::verdict_name(static_cast<oracle::Verdict>(v)))] = n[static_cast<std::size_t>(v)];
   j["end_checked"] = c.end_checked;
   j["end_miss"] = c.end.miss;
+  j["end_undecided"] = c.end.undecided;
   if (c.end.miss && !c.end.next.pairs.empty())
     j["end_pair"] = {id_of(s, c.end.next.pairs[0].a), id_of(s, c.end.next.pairs[0].b)};
   j["motion_misses"] = nlohmann::json::array();
