@@ -222,7 +222,7 @@ int main(int argc, char** argv) {
   report_cmd->add_option("--out,-o", report.out, "Output directory")->capture_default_str();
   report_cmd->add_flag("--quick", report.quick, "The quick sweep (CI's gate): fewer events, scenes and sizes");
   report_cmd->add_option("--scenes", report.scenes,
-                         "Scene files or directories instead of the bundled families (fixtures/scenes/* but long and peers)");
+                         "Scene files or directories instead of the bundled families (fixtures/scenes/* but long and peers, and each family's long/; the quick sweep leaves out rotation/corner-near-misses-a-wall-for-1000-turns)");
   report_cmd->add_option("--peer-scenes", report.peer_scenes,
                          "Scene files or directories for the peers part instead of fixtures/scenes/peers");
   report_cmd->add_option("--random", report.random, "Random scenes from pge fuzz's generator (default: 12 quick, 100 full)")

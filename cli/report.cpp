@@ -396,6 +396,16 @@ Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
 
 // ---- the sweep
 
+// Bundled scenes the quick sweep (CI's gate) leaves out for their cost, each named with why; the
+// full sweep, and --scenes, run them.
+// - rotation/corner-near-misses-a-wall-for-1000-turns: 4,000 near misses of 1e-12 searched
+//   through in one prediction: 1.3 s per run in double, 5 s in long double, 68 s in quad
+//   (software arithmetic), and a row is a judged run and 3 timed ones (about 14 minutes in all).
+//   fixture_expectations_rotation holds every solver to its expect block in double.
+bool left_out_of_quick(const fs::path& file) {
+  return file.parent_path().filename() == "rotation" && file.stem() == "corner-near-misses-a-wall-for-1000-turns";
+}
+
 std::vector<SceneItem> load_scenes(const ReportOptions& o, int random) {
   std::vector<std::string> paths = o.scenes;
   if (paths.empty()) {
@@ -411,6 +421,10 @@ std::vector<SceneItem> load_scenes(const ReportOptions& o, int random) {
   }
   std::vector<SceneItem> items;
   for (const std::string& file : expand_scene_paths(paths)) {
+    // A folder "long" inside a family (rotation/long: the 200-polygon spinning gas, 10,000
+    // collisions) is left out of the default sweep as the top-level one is; named, it is run.
+    if (o.scenes.empty() && fs::path(file).parent_path().filename() == "long") continue;
+    if (o.scenes.empty() && o.quick && left_out_of_quick(fs::path(file))) continue;
     SceneItem item;
     item.loaded = read_scene_file(file);
     const fs::path p(file);

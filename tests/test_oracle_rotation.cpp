@@ -37,7 +37,7 @@ BodyDesc wall_segment(const std::string& id, double x) {
   return b;
 }
 
-// fixtures/rotation/square-spins-into-a-wall.json: a unit square spinning at 1 rad/s about the
+// fixtures/scenes/rotation/square-spins-into-a-wall.json: a unit square spinning at 1 rad/s about the
 // origin, a wall at x = 0.6 (the double nearest). Vertex 1 (0.5, -0.5) reaches it at
 // t1 = pi/4 - acos(0.6 sqrt 2), 0.22779933669791162214542998907517844077688156267106
 // (mpmath, 50 digits, X the double 0.59999999999999997779...).
@@ -58,13 +58,13 @@ TEST(RotationReferee, SquareSpinningIntoAWallMatchesTheAcosFormTo30Digits) {
   EXPECT_EQ(next.pairs[0].features[0], (FeaturePair{ContactKind::VertexEdge, 1, 0}));
 }
 
-// fixtures/rotation/corner-grazes-a-wall.json: a diamond turned -0.5 rad spins at 1 rad/s; its
+// fixtures/scenes/rotation/corner-grazes-a-wall.json: a diamond turned -0.5 rad spins at 1 rad/s; its
 // vertex 0 is at x = cos(angle), which touches the wall's line x = 1 exactly at t = 0.5 (angle
 // exactly 0) and turns back: a tangency, no contact (DESIGN.md). The referee proves it a graze
 // (the function and its derivative exactly zero there) and finds nothing before the horizon; the
 // engine's event there (its impulse is rounding) is undecided, never agreement.
 TEST(RotationReferee, AnExactTangencyIsAGrazeAndTheEngineEventThereUndecided) {
-  const LoadedScene loaded = read_scene_file(PGE_SCENES_DIR "/../rotation/corner-grazes-a-wall.json");
+  const LoadedScene loaded = read_scene_file(PGE_SCENES_DIR "/rotation/corner-grazes-a-wall.json");
   World<double> world(loaded.scene);
   EXPECT_FALSE(next_event(exact_state(world)).time.has_value());
   Referee referee(exact_state(world));
@@ -79,14 +79,14 @@ TEST(RotationReferee, AnExactTangencyIsAGrazeAndTheEngineEventThereUndecided) {
   EXPECT_FALSE(referee.judge_end().miss);
 }
 
-// fixtures/rotation/corner-near-misses-a-wall-for-1000-turns.json: a corner passes within 1e-12
+// fixtures/scenes/rotation/corner-near-misses-a-wall-for-1000-turns.json: a corner passes within 1e-12
 // of a wall on each of 1,000 turns before the diamond strikes a ball; the strike's time from the
 // stored paths is 65.015207399248453 s (derive.py, 50 digits, rounded to double; the fixture's
 // tolerance 1.14e-13, 8 ulps). No near miss may be taken for a contact, none skipped, and the
 // work stays bounded (seconds, not a step per turn of fixed size).
 TEST(RotationReferee, TheContactAfterAThousandNearMissesIsFound) {
   const LoadedScene loaded =
-      read_scene_file(PGE_SCENES_DIR "/../rotation/corner-near-misses-a-wall-for-1000-turns.json");
+      read_scene_file(PGE_SCENES_DIR "/rotation/corner-near-misses-a-wall-for-1000-turns.json");
   const World<double> world(loaded.scene);
   const NextEvent next = next_event(exact_state(world));
   ASSERT_TRUE(next.time);

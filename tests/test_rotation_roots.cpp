@@ -14,6 +14,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <random>
 
 namespace {
@@ -406,6 +408,27 @@ TEST(RotationRoots, RandomFunctionsAgreeWithAHighPrecisionScan) {
   }
   EXPECT_GE(compared, 200);
   EXPECT_GE(roots, 50);
+}
+
+// A search resumed past a tangency or a crossing at t steps 1, 2, 4, ... ulps of t, but never
+// less than the smallest double: at t = 0 Quad's ulp is 2^-16494 and doubling from it to the end
+// of a window took about 16,500 evaluations of the function in software arithmetic per call (a
+// box lying still on a floor, whose gap is 0 throughout: 258 s to build the world in quad; CTest
+// cli_rotation_quad_resting runs it). float and double step exactly as before.
+TEST(RotationRoots, StepsPastAResolvedRootStartAtAnUlpButNotBelowTheSmallestDouble) {
+  using pge::Quad;
+  using pge::detail::first_step_past;
+  const double smallest = std::numeric_limits<double>::denorm_min();
+  EXPECT_EQ(first_step_past(0.0), smallest);
+  EXPECT_EQ(first_step_past(1.0), std::nextafter(1.0, 2.0) - 1.0);
+  EXPECT_EQ(first_step_past(0.0f), std::numeric_limits<float>::denorm_min());
+  EXPECT_EQ(first_step_past(Quad(0)), Quad(smallest));
+  EXPECT_EQ(first_step_past(Quad(1)), ldexp(Quad(1), -112));  // Quad's ulp at 1: 113-bit significand
+  EXPECT_EQ(first_step_past(0.0L), static_cast<long double>(smallest));
+  // The function 0 throughout (a gap that neither opens nor closes): past the tangency at 0 is the
+  // end of the window, as before.
+  const WaveSum<Quad> zero;
+  EXPECT_EQ(pge::detail::past_tangency(zero, Quad(0), Quad(1)), std::optional<Quad>(Quad(1)));
 }
 
 }  // namespace

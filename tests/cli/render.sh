@@ -35,12 +35,12 @@ sys.exit(0 if shapes == bodies and marks >= 1 else 1)
 PY
 done
 
-# A turning body is drawn at its angle: fixtures/rotation/square-spins-into-a-wall.json's square
+# A turning body is drawn at its angle: fixtures/scenes/rotation/square-spins-into-a-wall.json's square
 # ends at the position and angle its expect block derives in 50 digits (derive.py, independent of
 # the engine), so the final outline's corners are position + R(angle) (+-0.5, +-0.5); the start
 # outline is the square at angle 0. The picture's frame is recovered from the fixed wall (the
 # line x = 0.6 from y = -5 to 5).
-rotating=$(cd "$(dirname "$0")/../../fixtures/rotation" && pwd)/square-spins-into-a-wall.json
+rotating=$(cd "$(dirname "$0")/../../fixtures/scenes/rotation" && pwd)/square-spins-into-a-wall.json
 "$pge" render --quiet "$rotating" -o "$out/spin.svg" || fail "spin: pge render to SVG exited $?"
 "$pge" render --quiet "$rotating" -o "$out/spin.html" || fail "spin: pge render to HTML exited $?"
 python3 - "$rotating" "$out/spin.svg" <<'PY' || fail "spin: the turning square is not drawn at its angle"

@@ -10,7 +10,7 @@
 // turning shapes, the time is within 3.4 ulps of a 50-digit reference
 // (RotationPairs.FastSearchFindsTheContactsNearTheReferenceTime); what it gets wrong is what a
 // proof would catch: a graze that comes closer than the slop without touching is a contact
-// (fixtures/rotation/corner-near-misses-a-wall-for-1000-turns.json: fast strikes the wall on the
+// (fixtures/scenes/rotation/corner-near-misses-a-wall-for-1000-turns.json: fast strikes the wall on the
 // first turn), and far from the origin the gap loses digits to cancellation (4.8e-11 s off at
 // 1e6). The robust and certified solvers (predict_rotating.hpp) are held to the expect blocks;
 // this one is run beside them for contrast.
