@@ -2,6 +2,7 @@
 // forms, an exact tangency, a contact after a thousand near misses, and faked engine mistakes on
 // turning bodies, each caught with the right verdict. Expected values come from closed forms
 // evaluated with mpmath at 50 digits (each test says which), never from the code under test.
+#include "oracle_states.hpp"
 #include "pge/oracle.hpp"
 #include "pge/scene_io.hpp"
 
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <random>
 
 namespace pge::oracle {
 namespace {
@@ -211,6 +213,111 @@ TEST(RotationReferee, MeasuresASegmentsGapFromTheSideTheBodyIsOn) {
   e.time = Dyadic::from(0.1);
   const Judgement j = referee.judge(e, real.a_after, real.b_after);
   EXPECT_NEAR(j.gap, 0.6 - 0.5 * (std::cos(0.1) + std::sin(0.1)), 1e-15);
+}
+
+
+// The pair filter in front of the rotating search (rotating.cpp, apart_through): a separating
+// axis proven over the whole search window, in double intervals. It may leave out only pairs
+// that certainly do not touch, so every answer with the filters on equals the one with every
+// pair solved. These cases put a contact at the window's very end, where a bound that rounds
+// inwards, or that forgets the motion, the turning or a circle's radius over the window, would
+// leave the pair out.
+bool same_next(const NextEvent& x, const NextEvent& y) {
+  if (x.time.has_value() != y.time.has_value() || x.pairs.size() != y.pairs.size()) return false;
+  if (x.time && x.time->compare(*y.time) != 0) return false;
+  for (std::size_t k = 0; k < x.pairs.size(); ++k)
+    if (x.pairs[k].a != y.pairs[k].a || x.pairs[k].b != y.pairs[k].b || x.pairs[k].features != y.pairs[k].features ||
+        x.pairs[k].overlap_rule != y.pairs[k].overlap_rule)
+      return false;
+  return true;
+}
+
+// A turning polygon as the oracle holds it: vertices about its pivot p, angle theta0 + omega t.
+ExactBody turning(std::vector<Vec2d> local, Vec2d p, Vec2d v, double theta0, double omega) {
+  ExactBody b = testing::moving_polygon(std::move(local), p, v);
+  b.rotates = true;
+  b.inertia = Dyadic::from(0.25);
+  b.motion.theta0 = Dyadic::from(theta0);
+  b.motion.omega = Dyadic::from(omega);
+  return b;
+}
+
+NextEvent search_to(std::vector<ExactBody> bodies, double horizon, bool filter) {
+  return next_event(testing::state_of(std::move(bodies), horizon), {filter, kAgreeUlps});
+}
+
+TEST(RotationRefereeFilter, KeepsAPairTouchingExactlyAtTheWindowsEnd) {
+  // Turning bodies at a rate of 0 (the rotating search, exact sin and cos) whose faces meet at
+  // t = 1 exactly, the search's horizon: the swept shapes touch at the window's end and nowhere
+  // before, so the separating-axis bound is tight there.
+  const std::vector<Vec2d> box = testing::square(0.5);
+  const std::vector<std::vector<ExactBody>> scenes = {
+      {turning(box, {0, 0}, {1, 0}, 0, 0), testing::fixed_segment({1.5, -5}, {1.5, 5})},
+      {turning(box, {0, 0}, {1, 0}, 0, 0), turning(box, {3, 0.25}, {-1, 0}, 0, 0)},  // no corner on a corner
+      {turning(box, {0, 0}, {0, 0}, 0, 0), testing::moving_circle(0.5, {2, 0}, {-1, 0})},
+      {testing::moving_circle(0.25, {0, 0.75}, {0, 0}), turning(box, {0, -1}, {0, 1}, 0, 0)},
+  };
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    const NextEvent on = search_to(scenes[k], 1, true), off = search_to(scenes[k], 1, false);
+    ASSERT_TRUE(on.time.has_value()) << "scene " << k;
+    EXPECT_EQ(on.time->compare(Dyadic(1)), 0) << "scene " << k;
+    EXPECT_TRUE(same_next(on, off)) << "scene " << k;
+  }
+}
+
+TEST(RotationRefereeFilter, RandomTurningPairsAgreeWithTheUnfilteredSearchAtTheirContactsTime) {
+  // A turning polygon driven into a wall, a turning polygon or a ball, at random rates, angles
+  // and speeds; the search's horizon is put on the exact contact time (the doubles just below
+  // and above it, and 2^-30 s either side), where the swept shapes are within rounding of
+  // touching at the window's end. Filter on and off must agree on every one.
+  std::mt19937_64 rng(2026120526);
+  const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  const std::vector<std::vector<Vec2d>> shapes = {
+      testing::square(0.25), testing::diamond(0.3), {{-0.2, -0.15}, {0.25, -0.1}, {0, 0.3}}};
+  int contacts = 0;
+  for (int n = 0; n < 60; ++n) {
+    const auto shape = [&] { return shapes[static_cast<std::size_t>(n) % shapes.size()]; };
+    ExactBody mover = turning(shape(), {0, uniform(-0.2, 0.2)}, {uniform(0.5, 2), uniform(-0.3, 0.3)},
+                              uniform(-3, 3), uniform(-20, 20));
+    std::vector<ExactBody> bodies = {mover};
+    switch (n % 3) {
+      case 0: bodies.push_back(testing::fixed_segment({1, -5}, {1, 5})); break;
+      case 1: bodies.push_back(turning(shape(), {1.2, uniform(-0.2, 0.2)}, {uniform(-1, 0), 0}, uniform(-3, 3), uniform(-20, 20))); break;
+      default: bodies.push_back(testing::moving_circle(0.2, {1.1, uniform(-0.2, 0.2)}, {uniform(-1, 0), 0})); break;
+    }
+    const NextEvent far = search_to(bodies, 4, false);
+    if (!far.time) continue;
+    ++contacts;
+    const double t = far.time->to_double();
+    const double below = far.time->compare(Dyadic::from(t)) > 0 ? t : std::nextafter(t, 0.0);
+    const double above = std::nextafter(below, 4.0);
+    for (const double h : {below, above, below - 0x1p-30, above + 0x1p-30}) {
+      const NextEvent on = search_to(bodies, h, true), off = search_to(bodies, h, false);
+      EXPECT_TRUE(same_next(on, off)) << "case " << n << " horizon " << h;
+      EXPECT_EQ(on.time.has_value(), h > below) << "case " << n << " horizon " << h;
+    }
+  }
+  EXPECT_GT(contacts, 40);  // not vacuous: most cases meet before the horizon
+}
+
+TEST(RotationRefereeFilter, KeepsTheOverlapRuleForATurningCornerJustPastAWall) {
+  // A diamond's corner 2^-30 m past a wall's line, the diamond moving on into it (and turning):
+  // overlapping and approaching, a contact at tau = 0 by the overlap rule (oracle/README.md). No
+  // other axis is shallower (the wall's ends lie far on both sides of the diamond's edge lines),
+  // so neither the search's quick test for that nor the pair filter may drop it.
+  const double x = 0.5 - 0x1p-30;
+  for (const double omega : {0.0, 1.0}) {
+    const std::vector<ExactBody> bodies = {turning(testing::diamond(0.5), {0, 0}, {1, 0}, 0, omega),
+                                           testing::fixed_segment({x, -5}, {x, 5})};
+    for (const bool filter : {true, false}) {
+      const NextEvent next = search_to(bodies, 1, filter);
+      ASSERT_TRUE(next.time.has_value()) << "omega " << omega << " filter " << filter;
+      EXPECT_EQ(next.time->compare(Dyadic()), 0);
+      ASSERT_EQ(next.pairs.size(), 1u);
+      EXPECT_TRUE(next.pairs[0].overlap_rule);
+      EXPECT_TRUE(testing::has_feature(next.pairs[0], ContactKind::VertexEdge, 1, 0));
+    }
+  }
 }
 
 }  // namespace

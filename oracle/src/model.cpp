@@ -41,6 +41,7 @@ BodyModel<Interval> interval_model(const ExactBody& b) {
     for (const V2<Interval>& v : m.local) reach = std::max(reach, sqrt_up((square(v.x) + square(v.y)).hi()));
     m.shape = ShapeKind::Circle;
     m.radius = Interval(reach);
+    m.turning_local = std::move(m.local);
     m.local.clear();
   }
   set_motion(m, b.motion);

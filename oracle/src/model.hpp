@@ -28,6 +28,9 @@ template <class N> struct BodyModel {
   // is the disc it sweeps as it turns (shape Circle, radius its reach about the pivot).
   bool rotates = false;
   N theta0{}, omega{};
+  // The interval model of a rotating body: its outline about the pivot (what `local` held before
+  // it became the disc), for the rotating pair filter's swept outlines (rotating.cpp).
+  std::vector<V2<N>> turning_local;
 
   bool rests_on(BodyIndex j) const { return supports[0] == j || supports[1] == j; }
 };
@@ -93,6 +96,7 @@ class Frame {
   const BodyModel<Interval>& interval_body(BodyIndex i) const { return interval_[i]; }
   std::size_t size() const { return exact_.size(); }
   const Dyadic& now() const { return now_; }
+  const Interval& now_interval() const { return now_interval_; }
 
   const PointPath<Dyadic>& reference(BodyIndex i, const Dyadic*);
   const PointPath<Interval>& reference(BodyIndex i, const Interval*);
@@ -100,6 +104,8 @@ class Frame {
   // What the rotating search derives of body i from this frame's now (rotating.cpp's own type,
   // erased here): made once per frame, shared by every pair the body is in.
   std::shared_ptr<const void>& rotating_slot(BodyIndex i) { return rotating_[i]; }
+  // The same for the rotating pair filter's swept outline of body i over one window.
+  std::shared_ptr<const void>& sweep_slot(BodyIndex i) { return sweeps_[i]; }
 
  private:
   const std::vector<BodyModel<Dyadic>>& exact_;
@@ -111,6 +117,7 @@ class Frame {
   std::unordered_map<BodyIndex, PointPath<Dyadic>> exact_paths_;
   std::unordered_map<BodyIndex, PointPath<Interval>> interval_paths_;
   std::unordered_map<BodyIndex, std::shared_ptr<const void>> rotating_;
+  std::unordered_map<BodyIndex, std::shared_ptr<const void>> sweeps_;
 };
 
 template <> inline const BodyModel<Dyadic>& Frame::body<Dyadic>(BodyIndex i) const { return exact_[i]; }

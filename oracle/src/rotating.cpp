@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace pge::oracle::detail {
@@ -527,6 +528,125 @@ bool apart_over(const Kin& ka, const Kin& kb, const PoseT<N>& at, const PoseT<N>
   return certainly_positive(dot(dt, dt) - r2, dot(dm, dm) - r2);
 }
 
+// A body's shape over a search window tau in [0, tau_hi], in double intervals from the
+// frame's interval models (no exact kinematics: most pairs are decided here): each vertex (a
+// circle: its centre) enclosed over the whole window, the angle's sin and cos by Arb. What the
+// pair filter's separating-axis test reads; made once per body and window (Frame::sweep_slot).
+struct Sweep {
+  Dyadic tau_hi;
+  ShapeKind shape = ShapeKind::Circle;
+  Interval radius;
+  std::vector<std::array<Interval, 2>> points;
+};
+
+Sweep make_sweep(Frame& fr, BodyIndex i, const Dyadic& tau_hi) {
+  const BodyModel<Interval>& m = fr.interval_body(i);
+  Sweep s{tau_hi, fr.exact_body(i).shape, m.radius, {}};
+  const Interval T(0.0, Interval::enclose(tau_hi).hi());
+  const PointPath<Interval>& c = reference_of<Interval>(fr, i);
+  const Interval cx = evaluate(c.x, T), cy = evaluate(c.y, T);
+  if (s.shape == ShapeKind::Circle) {
+    s.points.push_back({cx, cy});
+    return s;
+  }
+  if (!m.rotates) {  // translating, or a fixed outline: its position plus its local vertices
+    for (const V2<Interval>& r : m.local) s.points.push_back({cx + r.x, cy + r.y});
+    return s;
+  }
+  // The angle theta0 + omega (now + tau - t0) over the window, then sin and cos over it.
+  const Interval angle = m.theta0 + m.omega * ((fr.now_interval() - m.t0) + T);
+  Interval sn(-1.0, 1.0), cs(-1.0, 1.0);
+  if (std::isfinite(angle.lo()) && std::isfinite(angle.hi())) {
+    const Precision guard(64);
+    Ball a, sb, cb;
+    arf_t lo, hi;
+    arf_init(lo);
+    arf_init(hi);
+    arf_set_d(lo, angle.lo());
+    arf_set_d(hi, angle.hi());
+    arb_set_interval_arf(a.get(), lo, hi, 64);
+    arf_clear(lo);
+    arf_clear(hi);
+    sin_cos(sb, cb, a);
+    sn = Num<Interval>::to_interval(sb);
+    cs = Num<Interval>::to_interval(cb);
+  }
+  for (const V2<Interval>& r : m.turning_local)
+    s.points.push_back({cx + (cs * r.x - sn * r.y), cy + (sn * r.x + cs * r.y)});
+  return s;
+}
+
+const Sweep& sweep_of(Frame& fr, BodyIndex i, const Dyadic& tau_hi) {
+  std::shared_ptr<const void>& slot = fr.sweep_slot(i);
+  if (!slot || static_cast<const Sweep*>(slot.get())->tau_hi != tau_hi)
+    slot = std::make_shared<const Sweep>(make_sweep(fr, i, tau_hi));
+  return *static_cast<const Sweep*>(slot.get());
+}
+
+// Whether b's shape lies beyond a's along the axis n = (nx, ny) (any exact doubles) all through
+// the window: the least n.q over b's points (less its radius |n| for a circle) above the
+// largest n.p over a's (plus its radius |n|), each bound rounded outward. Convex shapes, so
+// their points' projections span theirs.
+bool beyond_along(const Sweep& a, const Sweep& b, double nx, double ny) {
+  const Interval X(nx), Y(ny);
+  double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
+  for (const auto& p : a.points) top = std::max(top, (X * p[0] + Y * p[1]).hi());
+  for (const auto& q : b.points) bottom = std::min(bottom, (X * q[0] + Y * q[1]).lo());
+  const Interval norm(0.0, sqrt_up((square(X) + square(Y)).hi()));
+  if (a.shape == ShapeKind::Circle) top = (Interval(top) + a.radius * norm).hi();
+  if (b.shape == ShapeKind::Circle) bottom = (Interval(bottom) - b.radius * norm).lo();
+  return bottom > top;
+}
+
+double mid(const Interval& x) { return 0.5 * x.lo() + 0.5 * x.hi(); }
+
+// Whether the two shapes are certainly apart all through the window (the pair filter in front of
+// the discs of apart_over, which overlap in a dense gas of turning polygons): a separating axis,
+// chosen in plain doubles from the points' midpoints (any axis is sound: the proof is
+// beyond_along's outward rounding), among every edge's normal of either outline both ways and,
+// for a circle, the directions from its centre to the other's points. Apart shapes have no
+// contact: every contact the search reports has a point on the other's feature (f = 0 there),
+// or the two overlapping at tau = 0 (the overlap rule).
+bool apart_through(const Sweep& sa, const Sweep& sb) {
+  const Sweep* sweeps[2] = {&sa, &sb};
+  std::vector<std::array<double, 2>> points[2];
+  for (int i = 0; i < 2; ++i)
+    for (const auto& p : sweeps[i]->points) points[i].push_back({mid(p[0]), mid(p[1])});
+  std::vector<std::array<double, 2>> axes;
+  for (int i = 0; i < 2; ++i) {
+    const std::vector<std::array<double, 2>>& ps = points[i];
+    if (sweeps[i]->shape == ShapeKind::Circle) {
+      for (const auto& q : points[1 - i]) {
+        axes.push_back({q[0] - ps[0][0], q[1] - ps[0][1]});
+        axes.push_back({ps[0][0] - q[0], ps[0][1] - q[1]});
+      }
+      continue;
+    }
+    const std::size_t n = ps.size(), edges = sweeps[i]->shape == ShapeKind::Segment ? 1 : n;
+    for (std::size_t k = 0; k < edges; ++k) {
+      const auto& p = ps[k];
+      const auto& q = ps[(k + 1) % n];
+      axes.push_back({q[1] - p[1], p[0] - q[0]});
+      axes.push_back({p[1] - q[1], q[0] - p[0]});
+    }
+  }
+  // The axis of widest separation in doubles (a guess), then proven.
+  double best = 0;
+  std::array<double, 2> axis{0, 0};
+  for (const auto& n : axes) {
+    const double len = std::hypot(n[0], n[1]);
+    if (!(len > 0) || !std::isfinite(len)) continue;
+    double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
+    for (const auto& p : points[0]) top = std::max(top, n[0] * p[0] + n[1] * p[1]);
+    for (const auto& q : points[1]) bottom = std::min(bottom, n[0] * q[0] + n[1] * q[1]);
+    double gap = (bottom - top) / len;
+    if (sa.shape == ShapeKind::Circle) gap -= sa.radius.hi();
+    if (sb.shape == ShapeKind::Circle) gap -= sb.radius.hi();
+    if (gap > best) best = gap, axis = n;
+  }
+  return best > 0 && beyond_along(sa, sb, axis[0], axis[1]);
+}
+
 // The search of one pair over [0, H], left first (see the top of this file).
 class PairSearch {
  public:
@@ -596,6 +716,9 @@ class PairSearch {
       using MI = Num<Interval>;
       const Interval F = MI::meet(im.f.v + im.f.d * Hi + it.f.dd * H2i, it.f.v);
       if (F.certainly_positive() || (F.certainly_negative() && !a.is_zero())) continue;
+      // Below zero all through [0, b]: no crossing, only the overlap rule at tau = 0, which a
+      // certainly shallower axis rules out (overlap_applies; most of a dense gas's near pairs).
+      if (F.certainly_negative() && shallower_axis_at_start(ft)) continue;
       const Interval D = MI::meet(im.f.d + it.f.dd * Hi, it.f.d);
       if (D.certainly_positive()) continue;
       if (ft.to_edge) {
@@ -835,6 +958,34 @@ class PairSearch {
     return false;
   }
 
+  // shallower_axis for a vertex's feature at tau = 0, in double intervals (the vertices'
+  // signed distances, each f / |e|, compared cross-multiplied by the edges' lengths): true only
+  // where an axis is certainly shallower, so overlap_applies is false for the feature.
+  bool shallower_axis_at_start(const Feat& ft) {
+    if (!ft.to_edge || ft.pv < 0) return false;
+    using MI = Num<Interval>;
+    if (start_f_.empty()) {
+      PosedT<Interval> ps(*pk_, Interval(0.0));
+      start_f_.resize(pk_->feats.size());
+      for (std::size_t g = 0; g < pk_->feats.size(); ++g)
+        if (pk_->feats[g].to_edge && pk_->feats[g].pv >= 0) start_f_[g] = ps.values(pk_->feats[g]).f.v;
+    }
+    const auto index = [&](const Feat& g) { return static_cast<std::size_t>(&g - pk_->feats.data()); };
+    const auto same_axis = [](const Feat& g, const Feat& h) { return g.eb == h.eb && g.ek == h.ek && g.sigma == h.sigma; };
+    const Interval& mine = start_f_[index(ft)];
+    const Interval& my_len = MI::elen(pk_->kin(ft.eb), ft.ek);
+    for (const Feat& axis : pk_->feats) {
+      if (!axis.to_edge || axis.pv < 0 || same_axis(axis, ft)) continue;
+      const Interval scaled_mine = mine * MI::elen(pk_->kin(axis.eb), axis.ek);
+      bool shallower = true;
+      for (const Feat& g : pk_->feats)
+        if (g.to_edge && g.pv >= 0 && same_axis(g, axis) && !(start_f_[index(g)] * my_len - scaled_mine).certainly_positive())
+          shallower = false;
+      if (shallower) return true;
+    }
+    return false;
+  }
+
   void offer(const std::shared_ptr<const RotatingRoot>& root, int i, bool overlap) {
     const Feat& ft = pk_->feats[static_cast<std::size_t>(i)];
     RootHandle handle = transcendental_root(root);
@@ -856,6 +1007,7 @@ class PairSearch {
   SearchCounters& n_;
   mutable std::optional<Posed> start_pose_;  // overlap_applies: the pair at tau = 0, 512 bits
   mutable std::vector<std::optional<Ball>> start_distance_;
+  std::vector<Interval> start_f_;  // shallower_axis_at_start: f at tau = 0 of the vertices' features
   std::optional<Best> best_;
 
  public:
@@ -879,6 +1031,7 @@ std::optional<Dyadic> rotating_graze(Frame& fr, BodyIndex a, BodyIndex b, const 
 
 bool rotating_may_touch(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_hi) {
   if (tau_hi.sign() <= 0) return true;
+  if (apart_through(sweep_of(fr, a, tau_hi), sweep_of(fr, b, tau_hi))) return false;
   const std::shared_ptr<const Kin> pa = kin_of(fr, a), pb = kin_of(fr, b);
   const Kin &ka = *pa, &kb = *pb;
   const Precision guard(80);

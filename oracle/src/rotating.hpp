@@ -30,8 +30,10 @@ std::optional<PairResult> rotating_pair_contact(Frame& fr, BodyIndex a, BodyInde
 // placed at a dyadic time, such as a corner turning exactly onto a wall's line). No contact.
 std::optional<Dyadic> rotating_graze(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_hi);
 
-// False only when the pair certainly does not touch in [0, tau_hi]: the discs the bodies sweep
-// as they turn stay apart (the filter in front of rotating_pair_contact).
+// False only when the pair certainly does not touch in [0, tau_hi]: a separating axis keeps the
+// outlines apart all through the window (each body's outline enclosed over it in double
+// intervals), or the discs the bodies sweep as they turn stay apart (the filter in front of
+// rotating_pair_contact).
 bool rotating_may_touch(Frame& fr, BodyIndex a, BodyIndex b, const Dyadic& tau_hi);
 
 // The pair's coordinate scale at tau (length units): the larger of each body's largest centre
