@@ -36,9 +36,6 @@ using Clock = std::chrono::steady_clock;
 // Why PGE's rows have no referee columns.
 constexpr const char* kPgeNotJudged = "PGE's events are judged one by one by pge check, not as steps";
 constexpr const char* kNotAsked = "not judged (--no-judge)";
-// Why the peers' rows of a scene with rotation have none (issue 26, "The referee for rotation").
-constexpr const char* kRotationNotJudged =
-    "not judged: the scene has rotating bodies, and the referee judges their contacts in PGE's own runs (pge check), not yet in other engines' step traces (docs/rotation.md)";
 
 // One setting's outcome and the exact referee's verdicts on its step trace (peers), or why there
 // are none.
@@ -86,6 +83,7 @@ nlohmann::json to_json(const Row& r) {
                     {"late", s.late},
                     {"missed", s.missed},
                     {"phantom", s.phantom},
+                    {"undecided", s.undecided},
                     {"unfollowed_reports", s.unfollowed_reports},
                     {"pass_through", s.tunnelled},
                     {"continuing_reports", s.continuing_reports},
@@ -170,10 +168,18 @@ void print_table(const CompareOptions& opt, const LoadedScene& scene, double hor
              "referee.unfollowed_reports counts them). "
              "PGE rows: - ({}).\n",
              opt.no_judge ? kNotAsked : kPgeNotJudged);
-  if (has_rotation(scene.scene) && !opt.no_judge) fmt::print("Peer rows: - ({}).\n", kRotationNotJudged);
   if (has_rotation(scene.scene))
     fmt::print("Rotation: bodies that turn in PGE turn in the peers, about PGE's pivot with PGE's moment of inertia; "
-               "energies include I omega^2 / 2; positions are the scene's reference points.\n");
+               "energies include I omega^2 / 2; positions are the scene's reference points. The referee follows a "
+               "turning body between steps at the angle and angular velocity the peer recorded; a contact it "
+               "cannot decide (a tangency, a corner at an edge's very end) is undecided, counted apart below.\n");
+  std::string undecided;
+  for (const Row& r : rows)
+    if (r.referee && r.referee->undecided > 0)
+      undecided += fmt::format("{}{}: {}", undecided.empty() ? "" : "; ", r.outcome.setting.label, r.referee->undecided);
+  if (!undecided.empty())
+    fmt::print("Undecided (pair-steps whose contact the referee could not decide; neither agreement nor failure): {}.\n",
+               undecided);
 }
 
 }  // namespace
@@ -214,11 +220,7 @@ int compare_command(const CompareOptions& opt) {
       return kExitOutput;
     }
   }
-  // The referee does not judge step traces of rotating bodies yet: a scene with any is run and measured, its
-  // peers' traces written where asked, but not judged (the rows say so).
-  const bool rotation = has_rotation(scene.scene);
-  const bool judge = !opt.no_judge && !rotation;
-  if (rotation && !opt.no_judge) fmt::print(stderr, "pge compare: peers' contacts {}\n", kRotationNotJudged);
+  const bool judge = !opt.no_judge;
   const bool record = judge || !opt.trace_dir.empty();
   std::vector<Row> rows;
   for (const peers::Setting& s : settings) {
@@ -228,7 +230,6 @@ int compare_command(const CompareOptions& opt) {
     r.note = s.engine == "pge"            ? kPgeNotJudged
              : !r.outcome.error.empty() ? "not run"
              : opt.no_judge             ? kNotAsked
-             : rotation                 ? kRotationNotJudged
                                         : "";
     if (!r.outcome.trace) continue;
     if (!opt.trace_dir.empty() && !write_trace_file(r, opt.trace_dir)) return kExitOutput;

@@ -64,6 +64,10 @@ void print_steps(const std::string& path, const LoadedScene& loaded, const Trace
              "reports of pairs already overlapping or touching, {} of pairs whose body's path changed in the step\n",
              s.contacts, s.on_time, s.late, s.largest_late_steps, s.missed, s.tunnelled, s.phantom, s.continuing_reports,
              s.unfollowed_reports);
+  if (s.undecided > 0)
+    fmt::print("  undecided: {} pair-steps with a rotating body whose contact the referee could not decide (counted "
+               "apart, neither agreement nor failure)\n",
+               s.undecided);
   std::size_t deepest = 0;
   for (std::size_t k = 0; k < j.depth.size(); ++k)
     if (j.depth[k] > j.depth[deepest]) deepest = k;
@@ -90,6 +94,7 @@ Json steps_json(const Trace& trace, const oracle::StepJudgement& j) {
                     {"late", s.late},
                     {"missed", s.missed},
                     {"phantom", s.phantom},
+                    {"undecided", s.undecided},
                     {"tunnelled", s.tunnelled},
                     {"continuing_reports", s.continuing_reports},
                     {"unfollowed_reports", s.unfollowed_reports},
@@ -110,6 +115,7 @@ Json steps_json(const Trace& trace, const oracle::StepJudgement& j) {
     if (c.verdict == oracle::StepVerdict::Late) x["late_steps"] = c.late_steps;
     x["reported_step"] = c.reported_step ? Json(*c.reported_step) : Json(nullptr);
     if (c.verdict == oracle::StepVerdict::Missed) x["miss"] = oracle::miss_kind_name(c.miss);
+    if (c.verdict == oracle::StepVerdict::Undecided) x["undecided_reason"] = c.undecided_reason;
     x["depth"] = c.depth;
     x["relative_depth"] = c.relative_depth;
     contacts.push_back(std::move(x));

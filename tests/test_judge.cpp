@@ -1,8 +1,10 @@
 // The referee for other engines' traces (pge/judge.hpp, issue 28).
 //
 // (a) PGE's own runs written as traces, in events and in steps mode, judged as `pge check`
-//     judges the same run (the oracle's Referee following the world);
-// (b) hand-made step traces whose verdicts are worked out by hand in the comments;
+//     judges the same run (the oracle's Referee following the world), rotating scenes included
+//     (issue 26);
+// (b) hand-made step traces whose verdicts are worked out by hand in the comments, of a ball
+//     and a wall and of a square spinning in place next to a wall;
 // (c) bad traces: one error naming the line (or, in memory, the element) and the field.
 #include "pge/judge.hpp"
 #include "pge/oracle.hpp"
@@ -13,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -44,7 +47,9 @@ struct PgeRun {
 // Runs `scene` as pge check does (oracle::follow's referee judging every collision) and writes
 // the run as both kinds of trace: collisions with the pair's state before (its motion after the
 // collision starts where it was) and velocities after; frames as steps, each with the pairs
-// that collided since the frame before.
+// that collided since the frame before. A rotating body's state is written as `pge run
+// --trace` writes it (cli/trace.hpp): its reference point (World::snapshot), and its angle and
+// angular velocities; steps carry every listed body's turn in a scene with rotation.
 PgeRun run_pge(const Scene& scene, SolverKind solver, double frames_per_second, std::uint64_t max_events) {
   WorldOptions wo;
   wo.solver = solver;
@@ -54,8 +59,12 @@ PgeRun run_pge(const Scene& scene, SolverKind solver, double frames_per_second, 
   PgeRun run;
   run.events.mode = TraceMode::Events;
   run.steps.mode = TraceMode::Steps;
-  for (BodyIndex i = 0; i < world.body_count(); ++i)
+  bool rotation = false;
+  for (BodyIndex i = 0; i < world.body_count(); ++i) {
     if (!world.is_fixed(i)) run.steps.bodies.push_back(scene.bodies[i].id);
+    rotation = rotation || world.rotates(i);
+  }
+  const auto at = [&world](BodyIndex i) { return world.rotates(i) ? world.snapshot(i).position : world.motion(i).p0; };
   oracle::Referee referee(oracle::exact_state(world));
   std::vector<TraceContact> since_frame;
   world.on_collision([&](const CollisionInfo<double>& c) {
@@ -66,10 +75,22 @@ PgeRun run_pge(const Scene& scene, SolverKind solver, double frames_per_second, 
     t.t = c.time;
     t.a = scene.bodies[c.a].id;
     t.b = scene.bodies[c.b].id;
-    t.before_a = {world.motion(c.a).p0, c.va_before};
-    t.before_b = {world.motion(c.b).p0, c.vb_before};
+    t.before_a = {at(c.a), c.va_before};
+    t.before_b = {at(c.b), c.vb_before};
     t.va_after = c.va_after;
     t.vb_after = c.vb_after;
+    if (world.rotates(c.a) || world.rotates(c.b)) {
+      // Named features, as pge run --trace writes them: an event at an exact graze is undecided
+      // only where the gap of the engine's features says it is within rounding of the tangency.
+      t.contact = contact_kind_name(c.contact);
+      t.feature_a = c.feature_a;
+      t.feature_b = c.feature_b;
+      t.turning = true;
+      t.turn_a = {world.snapshot(c.a).angle, c.wa_before};
+      t.turn_b = {world.snapshot(c.b).angle, c.wb_before};
+      t.wa_after = c.wa_after;
+      t.wb_after = c.wb_after;
+    }
     run.events.collisions.push_back(t);
     since_frame.push_back({t.a, t.b});
   });
@@ -79,8 +100,12 @@ PgeRun run_pge(const Scene& scene, SolverKind solver, double frames_per_second, 
   world.on_frame([&](const World<double>& w, double t) {
     TraceStep s;
     s.t = t;
-    for (BodyIndex i = 0; i < w.body_count(); ++i)
-      if (!w.is_fixed(i)) s.bodies.push_back({w.snapshot(i).position, w.snapshot(i).velocity});
+    for (BodyIndex i = 0; i < w.body_count(); ++i) {
+      if (w.is_fixed(i)) continue;
+      const BodySnapshot<double> b = w.snapshot(i);
+      s.bodies.push_back({b.position, b.velocity});
+      if (rotation) s.turns.push_back({b.angle, b.angular_velocity});
+    }
     s.contacts = std::move(since_frame);
     since_frame.clear();
     run.steps.steps.push_back(std::move(s));
@@ -95,6 +120,9 @@ PgeRun run_pge(const Scene& scene, SolverKind solver, double frames_per_second, 
 }
 
 Scene fixture(const std::string& name) { return read_scene_file(std::string(PGE_SCENES_DIR) + "/" + name).scene; }
+Scene rotation_fixture(const std::string& name) {
+  return read_scene_file(std::string(PGE_ROTATION_DIR) + "/" + name).scene;
+}
 
 // Events mode: every collision gets pge check's verdict and time error, to the ulp.
 void expect_events_as_check(const Scene& scene, SolverKind solver, std::uint64_t max_events) {
@@ -113,6 +141,42 @@ TEST(JudgePgeRuns, EventsTraceGetsCheckVerdicts) {
   expect_events_as_check(fixture("basics/head-on.json"), SolverKind::Robust, 0);
   expect_events_as_check(fixture("basics/box-bounce.json"), SolverKind::Robust, 200);
   expect_events_as_check(fixture("games/snooker.json"), SolverKind::Robust, 200);
+}
+
+// Rotating scenes (issue 26): the trace's reference points and turns give the referee the paths
+// pge check follows (each body's pivot is its reference point plus its turned pivot offset, the
+// angle and spin the engine's), so the verdicts are pge check's, ulps included. peers-spinning-
+// boxes has two boxes whose reference point is a corner, not the pivot.
+TEST(JudgePgeRuns, EventsTraceOfRotatingScenesGetsCheckVerdicts) {
+  expect_events_as_check(rotation_fixture("square-spins-into-a-wall.json"), SolverKind::Robust, 0);
+  expect_events_as_check(rotation_fixture("square-spins-into-a-wall.json"), SolverKind::Certified, 0);
+  expect_events_as_check(rotation_fixture("squares-spinning-in-opposite-senses-meet.json"), SolverKind::Robust, 0);
+  expect_events_as_check(rotation_fixture("spinning-box-falls-onto-a-floor.json"), SolverKind::Certified, 0);
+  expect_events_as_check(rotation_fixture("rod-spins-into-a-fixed-ball.json"), SolverKind::Robust, 0);
+  expect_events_as_check(rotation_fixture("turnstile-struck-by-a-ball.json"), SolverKind::Robust, 0);
+  expect_events_as_check(rotation_fixture("../peers/peers-spinning-boxes.json"), SolverKind::Certified, 0);
+  expect_events_as_check(read_scene_file(std::string(PGE_CLI_TESTS_DIR) + "/rotating-box.json").scene, SolverKind::Robust, 50);
+}
+
+// The fast solver's rotating failures (docs/rotation.md, "The fast solver"), through the trace:
+// an impulse at an exact tangency (pge check: undecided), a contact 4.8e-11 s early at 1e6 (time
+// error), a corner striking on every turn a wall it misses by 1e-12 (phantoms). The same
+// verdicts, event by event.
+TEST(JudgePgeRuns, EventsTraceOfRotatingScenesGetsCheckFailures) {
+  const auto count = [](const PgeRun& run, oracle::Verdict v) {
+    return std::count_if(run.checked.begin(), run.checked.end(), [v](const CheckedEvent& e) { return e.verdict == v; });
+  };
+  const Scene graze = rotation_fixture("corner-grazes-a-wall.json");
+  ASSERT_GT(count(run_pge(graze, SolverKind::Fast, 0, 40), oracle::Verdict::Undecided), 0);
+  expect_events_as_check(graze, SolverKind::Fast, 40);
+  const Scene far = rotation_fixture("square-spins-into-a-wall-far-from-the-origin.json");
+  ASSERT_GT(count(run_pge(far, SolverKind::Fast, 0, 40), oracle::Verdict::TimeError), 0);
+  expect_events_as_check(far, SolverKind::Fast, 40);
+  const Scene near_miss = rotation_fixture("corner-near-misses-a-wall-for-1000-turns.json");
+  const PgeRun run = run_pge(near_miss, SolverKind::Fast, 0, 40);
+  ASSERT_GT(count(run, oracle::Verdict::Phantom), 0);
+  expect_events_as_check(near_miss, SolverKind::Fast, 40);
+  EXPECT_TRUE(oracle::judge_events(near_miss, run.events).failed());
 }
 
 // The fast solver's run of the pool break has misorders and phantoms by pge check's referee: the
@@ -170,6 +234,9 @@ TEST(JudgePgeRuns, StepsTraceGetsCheckVerdicts) {
   expect_steps_as_check(fixture("games/breakout.json"), 2, 1000);
   expect_steps_as_check(fixture("games/bagatelle.json"), 2, 1000);
   expect_steps_as_check(fixture("basics/gravity-box.json"), 2, 1000);
+  // Rotating: the referee turns each body from the frame's angle at its angular velocity.
+  expect_steps_as_check(rotation_fixture("square-spins-into-a-wall.json"), 2, 100);
+  expect_steps_as_check(rotation_fixture("spinning-box-falls-onto-a-floor.json"), 1, 1000);
 }
 
 // --- (b) hand-made step traces ----------------------------------------------------------------
@@ -429,6 +496,185 @@ TEST(JudgeSteps, NaiveSteppingEngineTunnels) {
             "contact \"ball\"-\"wall\" in step 0 (exact t = 0.0390625): missed (pass-through: tunnelling, never reported)");
 }
 
+// --- (b') hand-made step traces of a rotating body -------------------------------------------
+//
+// The scene: a unit square (vertices (+-1/2, +-1/2), mass 1) at the origin, at rest, turning
+// counter-clockwise at 1 rad/s from angle 0, and a fixed wall, the segment x = 5/8 from y = -1 to
+// 1; no gravity. Every state below is exact in doubles: the centre stays at the origin, and with
+// omega = 1 the angle at the end of a step of dyadic length is that dyadic time. Its corner
+// (1/2, -1/2) is at distance R = sqrt(2) / 2 from the centre, at polar angle theta - pi/4, so its
+// x is R cos(theta - pi/4): 1/2 at theta = 0, rising to R = 0.7071 > 5/8 at pi/4. It reaches the
+// wall when cos(theta - pi/4) = (5/8) / R = (5/8) sqrt(2), i.e. first at
+//   theta1 = pi/4 - acos((5/8) sqrt(2)) = 0.2987...,
+// and, spinning on, leaves the wall's line at pi/4 + acos((5/8) sqrt(2)) = 1.2722. The other
+// corners stay behind the line until the corner (-1/2, -1/2) (x = R cos(theta - 3 pi/4)) reaches
+// it at 3 pi/4 - acos((5/8) sqrt(2)) = 1.8695. The corner meets the wall at
+// y = -sqrt(R^2 - (5/8)^2) = -0.3307, inside the segment. Steps of 1/8 s: theta1 lies in the
+// third step (1/4, 3/8] (index 2). From any state of these traces before the contact (the angle
+// t at time t, omega 1) the referee's path is theta(t) = t, so the exact contact is at theta1 s.
+
+// The scene is tests/cli/judge/square-spins-next-to-a-wall.json (tests/cli/judge.sh judges it too).
+Scene spinning_square_scene() {
+  return read_scene_file(std::string(PGE_CLI_TESTS_DIR) + "/judge/square-spins-next-to-a-wall.json").scene;
+}
+
+// The closed form above, in double: std::acos and std::sqrt are within an ulp or so each, and
+// acos's slope at 0.88 is 2.1, so the double is within 1e-15 of theta1 (0.2987).
+double spinning_square_contact_time() { return std::atan(1.0) - std::acos(0.625 * std::sqrt(2.0)); }
+constexpr double kClosedFormError = 1e-15;
+
+// The square at the end of a step: at the origin, at rest, at `angle`, turning at `omega`.
+TraceStep spin_step(double t, double angle, double omega, bool contact = false) {
+  TraceStep s;
+  s.t = t;
+  s.bodies = {{{0, 0}, {0, 0}}};
+  s.turns = {{angle, omega}};
+  if (contact) s.contacts = {{"box", "wall"}};
+  return s;
+}
+
+Trace spin_trace(const std::vector<TraceStep>& steps) {
+  Trace t = steps_trace(steps);
+  t.bodies = {"box"};
+  return t;
+}
+
+// Reported in its step: the engine turns the square to 1/8, 1/4, then in step 2 strikes the
+// wall, reports it and sends the square back (angle 1/4, omega -1: the corner's x is then
+// (cos 1/4 + sin 1/4) / 2 = 0.6081 < 5/8, apart, and turning away). Verdict: one contact, in step
+// 2, at theta1, on time; no overlap at any step's end (the largest corner x at a step's end
+// before the contact is 0.6081 at angle 1/4). Energy: I omega^2 / 2 with I = m (1 + 1) / 12 =
+// 1/6 (a uniform square lamina about its centre), 1/12 at every step, whatever the sign of omega:
+// drift 0.
+TEST(JudgeRotatingSteps, ContactReportedInItsStepIsOnTime) {
+  const oracle::StepJudgement j = oracle::judge_steps(
+      spinning_square_scene(),
+      spin_trace({spin_step(0.125, 0.125, 1), spin_step(0.25, 0.25, 1), spin_step(0.375, 0.25, -1, true), spin_step(0.5, 0.125, -1)}));
+  ASSERT_EQ(j.contacts.size(), 1u) << oracle::failure_text({TraceMode::Steps, j, {}});
+  const oracle::StepContact& c = j.contacts[0];
+  EXPECT_EQ(c.step, 2u);
+  EXPECT_EQ(c.verdict, StepVerdict::OnTime);
+  ASSERT_TRUE(c.exact_time.has_value());
+  EXPECT_NEAR(*c.exact_time, spinning_square_contact_time(), kClosedFormError);
+  EXPECT_EQ(j.summary.on_time, 1u);
+  EXPECT_EQ(j.summary.late + j.summary.missed + j.summary.phantom + j.summary.undecided, 0u);
+  EXPECT_EQ(j.summary.largest_depth, 0.0);
+  EXPECT_EQ(j.summary.energy_start, 1.0 / 12);
+  EXPECT_EQ(j.summary.largest_energy_drift, 0.0);
+  EXPECT_FALSE(j.failed());
+}
+
+// Reported one step late: in step 2 the engine turns the square on to 3/8 without a report: the
+// corner's x is (cos 3/8 + sin 3/8) / 2 = 0.6484, past the wall by 0.0234 (the separating-axis
+// depth: along x, the shallowest axis; the square's own normals see the long wall overlap it by
+// 0.28 and 1), 0.0234 of the contact distance (1, the square's size, smaller than the wall's 2):
+// below the bound of a half. The report comes in step 3, with the square sent back to 1/4. Verdict:
+// the contact of step 2 (at theta1) late by 1.
+TEST(JudgeRotatingSteps, ContactReportedOneStepLate) {
+  const oracle::StepJudgement j = oracle::judge_steps(
+      spinning_square_scene(), spin_trace({spin_step(0.125, 0.125, 1), spin_step(0.25, 0.25, 1), spin_step(0.375, 0.375, 1),
+                                           spin_step(0.5, 0.25, -1, true), spin_step(0.625, 0.125, -1)}));
+  ASSERT_EQ(j.contacts.size(), 1u) << oracle::failure_text({TraceMode::Steps, j, {}});
+  const oracle::StepContact& c = j.contacts[0];
+  EXPECT_EQ(c.step, 2u);
+  EXPECT_EQ(c.verdict, StepVerdict::Late);
+  EXPECT_EQ(c.late_steps, 1u);
+  EXPECT_EQ(c.reported_step, std::optional<std::size_t>(3));
+  EXPECT_NEAR(*c.exact_time, spinning_square_contact_time(), kClosedFormError);
+  // The depth from the turned corner (rounded far below a double, turn.hpp) and rounded once.
+  EXPECT_NEAR(c.depth, (std::cos(0.375) + std::sin(0.375)) / 2 - 0.625, 1e-16);
+  EXPECT_FALSE(j.failed());
+}
+
+// The corner contact skipped: one long step from angle 1/4 to 3/2, unreported. On the path from
+// the step's start the corner reaches the wall at theta1, inside the step, and at 3/2 every
+// corner is behind the line again (the largest x, corner (1/2, -1/2)'s, R cos(3/2 - pi/4) =
+// 0.534 < 5/8; (-1/2, -1/2) only arrives at 1.8695): apart at the next step's start without a
+// report. Verdict: missed (pass-through), and the trace fails.
+TEST(JudgeRotatingSteps, SkippedCornerContactIsMissed) {
+  const oracle::StepJudgement j = oracle::judge_steps(
+      spinning_square_scene(), spin_trace({spin_step(0.125, 0.125, 1), spin_step(0.25, 0.25, 1), spin_step(1.5, 1.5, 1)}));
+  ASSERT_EQ(j.contacts.size(), 1u) << oracle::failure_text({TraceMode::Steps, j, {}});
+  const oracle::StepContact& c = j.contacts[0];
+  EXPECT_EQ(c.step, 2u);
+  EXPECT_EQ(c.verdict, StepVerdict::Missed);
+  EXPECT_EQ(c.miss, oracle::MissKind::PassThrough);
+  EXPECT_NEAR(*c.exact_time, spinning_square_contact_time(), kClosedFormError);
+  EXPECT_TRUE(j.failed());
+}
+
+// A phantom: the engine reports the pair in step 0, from angle 0 to 1/8, through which the
+// corner's x rises from 1/2 to (cos 1/8 + sin 1/8) / 2 = 0.5584 < 5/8 (and the other corners stay
+// further back): apart through the whole step. Then the real contact, reported in step 2, on time.
+TEST(JudgeRotatingSteps, ReportWithTheCornerFarFromTheWallIsPhantom) {
+  const oracle::StepJudgement j = oracle::judge_steps(
+      spinning_square_scene(),
+      spin_trace({spin_step(0.125, 0.125, 1, true), spin_step(0.25, 0.25, 1), spin_step(0.375, 0.25, -1, true)}));
+  ASSERT_EQ(j.contacts.size(), 2u) << oracle::failure_text({TraceMode::Steps, j, {}});
+  EXPECT_EQ(j.contacts[0].step, 0u);
+  EXPECT_EQ(j.contacts[0].verdict, StepVerdict::Phantom);
+  EXPECT_EQ(j.contacts[1].step, 2u);
+  EXPECT_EQ(j.contacts[1].verdict, StepVerdict::OnTime);
+  EXPECT_EQ(j.summary.phantom, 1u);
+  EXPECT_TRUE(j.failed());
+}
+
+// The referee turns the square at the recorded angular velocity, not the scene's: a trace whose
+// square spins at 2 rad/s from angle 1/4 at t = 1/4 (a peer's spin changed by something the trace
+// does not show) meets the wall when 1/4 + 2 (t - 1/4) = theta1, at t = 1/8 + theta1 / 2 = 0.2744,
+// in step 2 (1/4, 3/8]. Reported there: on time, at that time.
+TEST(JudgeRotatingSteps, PathFollowsTheRecordedSpin) {
+  const oracle::StepJudgement j = oracle::judge_steps(
+      spinning_square_scene(), spin_trace({spin_step(0.125, 0.125, 1), spin_step(0.25, 0.25, 2), spin_step(0.375, 0.25, -1, true)}));
+  ASSERT_EQ(j.contacts.size(), 1u) << oracle::failure_text({TraceMode::Steps, j, {}});
+  EXPECT_EQ(j.contacts[0].verdict, StepVerdict::OnTime);
+  EXPECT_NEAR(*j.contacts[0].exact_time, 0.125 + spinning_square_contact_time() / 2, kClosedFormError);
+}
+
+// A step of a rotating scene without the turns, and a turn off the scene's start, are refused.
+TEST(JudgeRotatingSteps, MissingOrWrongTurnsAreRefused) {
+  TraceStep bare = spin_step(0.125, 0.125, 1);
+  bare.turns.clear();
+  try {
+    oracle::judge_steps(spinning_square_scene(), spin_trace({bare}));
+    FAIL() << "no error";
+  } catch (const TraceError& e) {
+    EXPECT_EQ(e.field(), "steps[0].turns");
+    EXPECT_NE(e.reason().find("body \"box\" rotates"), std::string::npos) << e.what();
+  }
+  try {
+    oracle::judge_steps(spinning_square_scene(), spin_trace({spin_step(0, 0, 2)}));
+    FAIL() << "no error";
+  } catch (const TraceError& e) {
+    EXPECT_STREQ(e.what(), "trace: field \"steps[0].turns[0][1]\": the state at t = 0 is the scene's: body \"box\" has "
+                           "angular velocity 1 there, the trace 2");
+  }
+}
+
+// A rotating pair's contact the referee cannot decide is undecided, counted apart, never agree
+// or a failure. The square at angle 0, not turning (omega 0, but a rotating body: the rotating
+// search judges it), slides right at 1 from the origin; a wall hangs from (1, -1/2) down to
+// (1, -2). The square's corner (1/2, -1/2) meets exactly the wall's upper end at t = 1/2 (a
+// contact at an edge's very end, which oracle/README.md's "Undecided" names), in step 1 (1/4,
+// 1/2], where the engine reports it.
+TEST(JudgeRotatingSteps, ContactAtAnEdgesEndIsUndecided) {
+  Scene s = spinning_square_scene();
+  s.bodies[0].angular_velocity = 0;
+  s.bodies[0].velocity = {1, 0};
+  s.bodies[1] = wall("wall", {1, -0.5}, {1, -2});
+  TraceStep s0 = spin_step(0.25, 0, 0), s1 = spin_step(0.5, 0, 0, true);
+  s0.bodies = {{{0.25, 0}, {1, 0}}};
+  s1.bodies = {{{0.5, 0}, {-1, 0}}};
+  const oracle::StepJudgement j = oracle::judge_steps(s, spin_trace({s0, s1}));
+  ASSERT_EQ(j.contacts.size(), 1u) << oracle::failure_text({TraceMode::Steps, j, {}});
+  EXPECT_EQ(j.contacts[0].verdict, StepVerdict::Undecided);
+  EXPECT_EQ(j.contacts[0].reported_step, std::optional<std::size_t>(1));
+  EXPECT_FALSE(j.contacts[0].undecided_reason.empty());
+  EXPECT_EQ(j.summary.undecided, 1u);
+  EXPECT_EQ(j.summary.contacts + j.summary.phantom, 0u);
+  EXPECT_FALSE(j.failed());
+}
+
 // A trace written and read back is the same trace.
 TEST(JudgeTraceIo, WriteThenReadGivesTheTraceBack) {
   Trace t = steps_trace({step(0.125, 1, 8), step(0.25, -0.0, -8, true)});
@@ -445,6 +691,39 @@ TEST(JudgeTraceIo, WriteThenReadGivesTheTraceBack) {
   ASSERT_EQ(back.steps[1].contacts.size(), 1u);
   EXPECT_EQ(back.steps[1].contacts[0].b, "wall");
   EXPECT_EQ(back.steps[1].line, 3);
+}
+
+// A turning pair's collision keeps its turns (angle and angular velocity before, angular
+// velocities after) through a write and a read; a line with only some of them is refused.
+TEST(JudgeTraceIo, CollisionTurnsRoundTrip) {
+  Trace t;
+  t.mode = TraceMode::Events;
+  TraceCollision c;
+  c.t = 0.5;
+  c.a = "box";
+  c.b = "wall";
+  c.turning = true;
+  c.turn_a = {0.25, -3};
+  c.wa_after = 1.5;
+  t.collisions = {c};
+  std::stringstream io;
+  write_trace(io, t);
+  const Trace back = read_trace(io, "memory");
+  ASSERT_EQ(back.collisions.size(), 1u);
+  EXPECT_TRUE(back.collisions[0].turning);
+  EXPECT_EQ(back.collisions[0].turn_a.angle, 0.25);
+  EXPECT_EQ(back.collisions[0].turn_a.angular_velocity, -3);
+  EXPECT_EQ(back.collisions[0].turn_b.angle, 0);
+  EXPECT_EQ(back.collisions[0].wa_after, 1.5);
+  std::istringstream partial(R"({"format":"pge-trace/2","mode":"events"})"
+                             "\n"
+                             R"({"event":"collision","t":0.5,"a":"box","b":"wall","before":[[0,0,0,0],[0,0,0,0]],"va":[0,0],"vb":[0,0],"turn":[[0,1],[0,0]]})");
+  try {
+    read_trace(partial, "t.jsonl");
+    FAIL() << "no error";
+  } catch (const TraceError& e) {
+    EXPECT_STREQ(e.what(), "t.jsonl:2: field \"wa\": missing: a collision of a turning pair gives \"turn\", \"wa\" and \"wb\" together");
+  }
 }
 
 // --- (c) bad traces ---------------------------------------------------------------------------

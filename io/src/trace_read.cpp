@@ -238,6 +238,19 @@ class TraceReader {
       c.feature_a = index(f[0], key("features") + 0);
       c.feature_b = index(f[1], key("features") + 1);
     }
+    const int turns = static_cast<int>(j.contains("turn")) + static_cast<int>(j.contains("wa")) + static_cast<int>(j.contains("wb"));
+    if (turns > 0 && turns < 3)
+      l.fail(key(j.contains("turn") ? (j.contains("wa") ? "wb" : "wa") : "turn"),
+             "missing: a collision of a turning pair gives \"turn\", \"wa\" and \"wb\" together");
+    if (turns == 3) {
+      const Json& turn = l.array(j["turn"], key("turn"));
+      if (turn.size() != 2) l.fail(key("turn"), "must hold 2 turns [[angle, w], [angle, w]] (a, then b), got " + describe(turn));
+      c.turning = true;
+      c.turn_a = l.turn(turn[0], key("turn") + 0);
+      c.turn_b = l.turn(turn[1], key("turn") + 1);
+      c.wa_after = l.number(j["wa"], key("wa"));
+      c.wb_after = l.number(j["wb"], key("wb"));
+    }
     trace_.collisions.push_back(std::move(c));
   }
 

@@ -14,6 +14,7 @@ using Json = nlohmann::ordered_json;
 
 Json vec2(const Vec2d& v) { return Json::array({v.x, v.y}); }
 Json state(const TraceState& s) { return Json::array({s.position.x, s.position.y, s.velocity.x, s.velocity.y}); }
+Json turn(const TraceTurn& w) { return Json::array({w.angle, w.angular_velocity}); }
 
 void put(std::ostream& out, const Json& line) {
   try {
@@ -40,7 +41,7 @@ void write_trace(std::ostream& out, const Trace& trace) {
     Json line = {{"event", "step"}, {"t", s.t}, {"bodies", std::move(states)}};
     if (!s.turns.empty()) {
       Json turns = Json::array();
-      for (const TraceTurn& w : s.turns) turns.push_back(Json::array({w.angle, w.angular_velocity}));
+      for (const TraceTurn& w : s.turns) turns.push_back(turn(w));
       line["turns"] = std::move(turns);
     }
     line["contacts"] = std::move(contacts);
@@ -55,6 +56,11 @@ void write_trace(std::ostream& out, const Trace& trace) {
     line["before"] = Json::array({state(c.before_a), state(c.before_b)});
     line["va"] = vec2(c.va_after);
     line["vb"] = vec2(c.vb_after);
+    if (c.turning) {
+      line["turn"] = Json::array({turn(c.turn_a), turn(c.turn_b)});
+      line["wa"] = c.wa_after;
+      line["wb"] = c.wb_after;
+    }
     put(out, line);
   }
   if (trace.end)

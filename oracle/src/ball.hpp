@@ -1,6 +1,7 @@
 // Arb's real balls (mid +- rad, every operation's result holding the exact one: rigorous sin and
 // cos included) for the oracle's transcendental contacts, with the working precision of the
-// calling thread. Only rotating.cpp includes it: Arb stays out of every other translation unit.
+// calling thread. Only rotating.cpp and turn.cpp include it: Arb stays out of every other
+// translation unit.
 #pragma once
 
 #include "pge/oracle_exact.hpp"

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <tuple>
 #include <utility>
@@ -36,13 +37,25 @@ ExactVec velocity_at(const ExactMotion& m, const Dyadic& t) {
   return {m.v0.x + m.acc.x * d, m.v0.y + m.acc.y * d};
 }
 
-// The first component of `given` further than kStateTolerance from `path` (-1: none).
-int mismatch(const TraceState& given, const ExactVec& p, const ExactVec& v) {
-  const double on_path[4] = {p.x.to_double(), p.y.to_double(), v.x.to_double(), v.y.to_double()};
-  const double seen[4] = {given.position.x, given.position.y, given.velocity.x, given.velocity.y};
-  for (int k = 0; k < 4; ++k)
+// A body's state as a trace gives it: x, y, vx, vy (the reference point, and the centre of
+// mass's velocity), then its angle and angular velocity (0, 0 for a body that does not turn).
+using StateArray = std::array<double, 6>;
+// How a message names a component of it (the field names the position and velocity already).
+constexpr const char* kStateNames[6] = {"", "", "", "", "angle ", "angular velocity "};
+
+// The first component of `seen` further than kStateTolerance from `on_path` (-1: none).
+int mismatch(const StateArray& seen, const StateArray& on_path) {
+  for (int k = 0; k < 6; ++k)
     if (std::abs(seen[k] - on_path[k]) > kStateTolerance * std::max(1.0, std::abs(on_path[k]))) return k;
   return -1;
+}
+
+// Body i on its path at time t, as a trace gives it.
+StateArray path_state(const SceneModel& m, const ExactBody& body, BodyIndex i, const Dyadic& t) {
+  const Dyadic angle = angle_at(body.motion, t);
+  const Vec2d p = reference_of(m, i, position_at(body.motion, t), angle);
+  const ExactVec v = velocity_at(body.motion, t);
+  return {p.x, p.y, v.x.to_double(), v.y.to_double(), angle.to_double(), body.motion.omega.to_double()};
 }
 
 // Energy and momentum of the moving bodies at time t on the state's motions.
@@ -52,7 +65,7 @@ std::pair<double, Vec2d> totals_at(const ExactState& s, const Dyadic& t) {
   for (const ExactBody& b : s.bodies) {
     if (b.fixed) continue;
     const ExactVec v = velocity_at(b.motion, t);
-    energy += body_energy(b, position_at(b.motion, t), v);
+    energy += body_energy(b, position_at(b.motion, t), v, b.motion.omega);
     momentum.x += b.mass * v.x;
     momentum.y += b.mass * v.y;
   }
@@ -65,6 +78,8 @@ struct Side {
   const Vec2d* after;
   const char* name;  // "a" or "b"
   int state_index;   // in "before"
+  TraceTurn turn;    // before (0, 0 when the trace gives none)
+  double w_after;
 };
 
 }  // namespace
@@ -94,13 +109,19 @@ EventJudgement judge_events(const Scene& scene, const Trace& trace, const JudgeO
     failer.finite(c.t, c.line, element, "t");
     if (c.t < last_t) failer.fail(c.line, element, "t", fmt::format("{} is before the previous collision's time {}", c.t, last_t));
     last_t = c.t;
-    Side sides[2] = {{failer.body(model, c.line, element, "a", c.a), &c.before_a, &c.va_after, "a", 0},
-                     {failer.body(model, c.line, element, "b", c.b), &c.before_b, &c.vb_after, "b", 1}};
+    Side sides[2] = {{failer.body(model, c.line, element, "a", c.a), &c.before_a, &c.va_after, "a", 0, c.turn_a, c.wa_after},
+                     {failer.body(model, c.line, element, "b", c.b), &c.before_b, &c.vb_after, "b", 1, c.turn_b, c.wb_after}};
     if (sides[0].body == sides[1].body) failer.fail(c.line, element, "b", "a body cannot collide with itself");
     if (sides[0].body > sides[1].body) std::swap(sides[0], sides[1]);
     const ExactState& now = referee.state();
     if (now.bodies[sides[0].body].fixed && now.bodies[sides[1].body].fixed)
       failer.fail(c.line, element, "b", "two fixed bodies never collide");
+    for (const Side& side : sides)
+      if (now.bodies[side.body].rotates && !c.turning)
+        failer.fail(c.line, element, "turn",
+                    fmt::format("missing: body \"{}\" rotates, and a collision of a turning pair gives each body's "
+                                "[angle, angular velocity] before and \"wa\", \"wb\" after",
+                                model.ids[side.body]));
     const Dyadic t = Dyadic::from(c.t);
     ExactMotion after[2];
     for (int s = 0; s < 2; ++s) {
@@ -109,22 +130,35 @@ EventJudgement judge_events(const Scene& scene, const Trace& trace, const JudgeO
       failer.finite(*side.before, c.line, element, field);
       failer.finite(side.after->x, c.line, element, fmt::format("v{}[0]", side.name));
       failer.finite(side.after->y, c.line, element, fmt::format("v{}[1]", side.name));
+      const std::string turn_field = fmt::format("turn[{}]", side.state_index);
+      failer.finite(side.turn.angle, c.line, element, turn_field + "[0]");
+      failer.finite(side.turn.angular_velocity, c.line, element, turn_field + "[1]");
+      failer.finite(side.w_after, c.line, element, fmt::format("w{}", side.name));
       const ExactBody& body = now.bodies[side.body];
-      const ExactVec p = position_at(body.motion, t), v = velocity_at(body.motion, t);
-      if (const int bad = mismatch(*side.before, p, v); bad >= 0) {
-        const double on_path[4] = {p.x.to_double(), p.y.to_double(), v.x.to_double(), v.y.to_double()};
-        failer.fail(c.line, element, fmt::format("{}[{}]", field, bad),
-                    fmt::format("body \"{}\" is not where the scene and the trace's earlier collisions put it: {} on "
+      const StateArray on_path = path_state(model, body, side.body, t);
+      const StateArray seen = {side.before->position.x, side.before->position.y, side.before->velocity.x,
+                               side.before->velocity.y,  side.turn.angle,         side.turn.angular_velocity};
+      if (const int bad = mismatch(seen, on_path); bad >= 0)
+        failer.fail(c.line, element, bad < 4 ? fmt::format("{}[{}]", field, bad) : fmt::format("{}[{}]", turn_field, bad - 4),
+                    fmt::format("body \"{}\" is not where the scene and the trace's earlier collisions put it: {}{} on "
                                 "its path, {} in the trace{}",
-                                model.ids[side.body], on_path[bad],
-                                bad < 2 ? (bad == 0 ? side.before->position.x : side.before->position.y)
-                                        : (bad == 2 ? side.before->velocity.x : side.before->velocity.y),
+                                model.ids[side.body], kStateNames[bad], on_path[bad], seen[bad],
                                 body.fixed ? " (a fixed body never moves)" : ""));
-      }
       if (body.fixed && (side.after->x != 0 || side.after->y != 0))
         failer.fail(c.line, element, fmt::format("v{}", side.name), fmt::format("body \"{}\" is fixed: it stays at rest", model.ids[side.body]));
+      if (body.fixed && !(Dyadic::from(side.w_after) == body.motion.omega))
+        failer.fail(c.line, element, fmt::format("w{}", side.name),
+                    fmt::format("body \"{}\" is fixed: it keeps its angular velocity {}", model.ids[side.body], body.motion.omega.to_double()));
+      // A rotating body goes on from its recorded angle (which does not jump) and pivot, at its
+      // angular velocity after.
       after[s] = body.fixed ? body.motion
-                            : ExactMotion{t, ExactVec::from(side.before->position), ExactVec::from(*side.after), body.motion.acc};
+                            : ExactMotion{t,
+                                          pivot_of(model, side.body, side.before->position, side.turn.angle),
+                                          ExactVec::from(*side.after),
+                                          body.motion.acc,
+                                          {kNoBody, kNoBody},
+                                          body.rotates ? Dyadic::from(side.turn.angle) : Dyadic(),
+                                          body.rotates ? Dyadic::from(side.w_after) : Dyadic()};
     }
     ExactEvent e;
     e.time = t;
@@ -134,7 +168,12 @@ EventJudgement judge_events(const Scene& scene, const Trace& trace, const JudgeO
     e.vb_before = ExactVec::from(sides[1].before->velocity);
     e.va_after = ExactVec::from(*sides[0].after);
     e.vb_after = ExactVec::from(*sides[1].after);
-    e.impulse = !(sides[0].before->velocity == *sides[0].after && sides[1].before->velocity == *sides[1].after);
+    e.wa_before = Dyadic::from(sides[0].turn.angular_velocity);
+    e.wb_before = Dyadic::from(sides[1].turn.angular_velocity);
+    e.wa_after = Dyadic::from(sides[0].w_after);
+    e.wb_after = Dyadic::from(sides[1].w_after);
+    e.impulse = !(sides[0].before->velocity == *sides[0].after && sides[1].before->velocity == *sides[1].after &&
+                  sides[0].turn.angular_velocity == sides[0].w_after && sides[1].turn.angular_velocity == sides[1].w_after);
     if (!c.contact.empty()) {
       std::optional<ContactKind> kind;
       for (const ContactKind kind_k : {ContactKind::CircleCircle, ContactKind::CircleEdge, ContactKind::CircleVertex,
@@ -150,7 +189,10 @@ EventJudgement judge_events(const Scene& scene, const Trace& trace, const JudgeO
         else if (e.contact == ContactKind::EdgeVertex) e.contact = ContactKind::VertexEdge;
       }
     }
-    // Without named features the verdict is the same; features and gap are then not judged.
+    // Without named features the verdict is the same, features and gap are then not judged; but
+    // for a rotating pair's event at an exact graze, which is undecided only where the gap of
+    // the engine's features shows it within rounding of the tangency (oracle/README.md,
+    // "Rotation"), and otherwise a phantom.
     EventVerdict verdict{k, model.ids[e.a], model.ids[e.b], c.t, e, referee.judge(e, after[0], after[1])};
     ++out.counts[static_cast<int>(verdict.judgement.verdict)];
     const Conservation& cons = verdict.judgement.conservation;

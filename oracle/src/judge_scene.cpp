@@ -1,5 +1,7 @@
 #include "judge_scene.hpp"
 
+#include "turn.hpp"
+
 #include "pge/world.hpp"
 
 #include <fmt/core.h>
@@ -15,21 +17,30 @@ SceneModel scene_model(const Scene& scene) {
   options.broad_phase = BroadPhase::AllPairs;  // only the state is read: no grid to build
   options.frames_per_second = 0;
   const World<double> world(scene, options);
-  // Traces of other engines carry no angles the referee could follow yet: a scene with rotating
-  // bodies is refused here, as before the rotating referee (which judges PGE's own runs).
-  for (BodyIndex i = 0; i < scene.bodies.size(); ++i)
-    if (world.rotates(i))
-      throw UnsupportedScene(static_cast<int>(i), "body \"" + scene.bodies[i].id +
-                                                      "\": rotates: traces of rotating bodies are not judged yet "
-                                                      "(oracle/README.md, \"Rotation\"); pge check judges PGE's own runs");
   SceneModel m;
   m.state = exact_state(world);
   for (BodyIndex i = 0; i < scene.bodies.size(); ++i) {
     m.index.emplace(scene.bodies[i].id, i);
     m.ids.push_back(scene.bodies[i].id);
+    m.pivot.push_back(world.rotates(i) ? std::optional(ExactVec::from(world.pivot(i))) : std::nullopt);
+    m.reference.push_back(scene.bodies[i].position);
   }
   return m;
 }
+
+ExactVec pivot_of(const SceneModel& m, BodyIndex i, const Vec2d& reference, double angle) {
+  const ExactVec r = ExactVec::from(reference);
+  if (!m.pivot[i]) return r;
+  const ExactVec d = turned({*m.pivot[i]}, Dyadic::from(angle))[0];
+  return {Dyadic::from((r.x + d.x).to_double()), Dyadic::from((r.y + d.y).to_double())};
+}
+
+Vec2d reference_of(const SceneModel& m, BodyIndex i, const ExactVec& pivot, const Dyadic& angle) {
+  const ExactVec d = m.pivot[i] ? turned({*m.pivot[i]}, angle)[0] : ExactVec{};
+  return {(pivot.x - d.x).to_double(), (pivot.y - d.y).to_double()};
+}
+
+Dyadic angle_at(const ExactMotion& m, const Dyadic& t) { return m.theta0 + m.omega * (t - m.t0); }
 
 void TraceFailer::fail(int line, const std::string& element, const std::string& field, const std::string& reason) const {
   std::string where = field;
@@ -158,12 +169,14 @@ double size_of(const ExactBody& b) {
 
 }  // namespace
 
-Placed place(const ExactBody& body, const ExactVec& position) {
+Placed place(const ExactBody& body, const ExactVec& position, const Dyadic& angle) {
   Placed p;
   p.shape = body.shape;
   p.radius = body.radius;
   p.centre = position;
-  if (body.fixed) {
+  if (body.rotates) {
+    for (const ExactVec& v : turned(body.local, angle)) p.vertices.push_back(position + v);
+  } else if (body.fixed) {
     p.vertices = body.world;
   } else {
     for (const ExactVec& v : body.local) p.vertices.push_back(position + v);
@@ -212,8 +225,19 @@ Box bounding_box(const Placed& p) {
   return box;
 }
 
-Dyadic body_energy(const ExactBody& body, const ExactVec& position, const ExactVec& velocity) {
-  return body.mass * (dot(velocity, velocity).scaled(-1) - dot(body.field_acc, position));
+Box reach_box(const ExactBody& body, const ExactVec& position) {
+  if (!body.rotates) return bounding_box(place(body, position));
+  double reach = body.radius.to_double();
+  for (const ExactVec& v : body.local) reach = std::max(reach, std::hypot(v.x.to_double(), v.y.to_double()));
+  Placed disc;
+  disc.centre = position;
+  disc.radius = Dyadic::from(reach);
+  return bounding_box(disc);  // outward by 2^-40 relative: more than the roundings of the reach
+}
+
+Dyadic body_energy(const ExactBody& body, const ExactVec& position, const ExactVec& velocity, const Dyadic& omega) {
+  return body.mass * (dot(velocity, velocity).scaled(-1) - dot(body.field_acc, position)) +
+         (body.inertia * omega * omega).scaled(-1);
 }
 
 }  // namespace pge::oracle::detail

@@ -6,6 +6,7 @@
 #include "pge/judge.hpp"
 #include "pge/oracle_state.hpp"
 
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -14,12 +15,27 @@ namespace pge::oracle::detail {
 
 // The scene's exact state at its start, as PGE's double engine holds it (fixed bodies' world
 // vertices rounded once, as World does), and its ids.
+// A rotating body's pivot (its path's point, ExactMotion::p0) sits at its reference point plus
+// R(angle) pivot[i] (World::pivot; none for a body that does not rotate: its path's point is its
+// reference point); a trace gives reference points (the scene's `position`, turned with the
+// body). `pivot` and `reference` stay when `state` is moved out (events mode).
 struct SceneModel {
   ExactState state;
   std::unordered_map<std::string, BodyIndex> index;
   std::vector<std::string> ids;
+  std::vector<std::optional<ExactVec>> pivot;
+  std::vector<Vec2d> reference;  // each body's reference point at the start (the scene's position)
 };
 SceneModel scene_model(const Scene& scene);
+
+// Body i's pivot from a trace's reference point and angle: the nearest doubles of
+// reference + R(angle) pivot[i] (turn.hpp; the reference point itself for a body that does not
+// rotate). The referee's path of the body starts there.
+ExactVec pivot_of(const SceneModel& m, BodyIndex i, const Vec2d& reference, double angle);
+// Body i's reference point, in doubles, from its pivot and angle: what a trace gives.
+Vec2d reference_of(const SceneModel& m, BodyIndex i, const ExactVec& pivot, const Dyadic& angle);
+// The angle on body i's path at time t: theta0 + omega (t - t0), exactly.
+Dyadic angle_at(const ExactMotion& m, const Dyadic& t);
 
 // Errors about an element of `trace` (a step, a collision, the header): its line when read from
 // a file, else the element's name ("steps[3]") before the field.
@@ -43,7 +59,9 @@ struct Placed {
   ExactVec centre;
   std::vector<ExactVec> vertices;
 };
-Placed place(const ExactBody& body, const ExactVec& position);
+// `position` is a rotating body's pivot, turned by `angle` (turn.hpp: its vertices rounded far
+// below every engine's rounding; exact at angle 0); `angle` is ignored for any other body.
+Placed place(const ExactBody& body, const ExactVec& position, const Dyadic& angle = Dyadic());
 
 // The exact sign of the separation of two bodies (-1 overlapping, 0 touching, 1 apart) and,
 // when they overlap, the depth: how far apart they must move to touch (the separating-axis
@@ -64,7 +82,13 @@ struct Box {
 // A box certainly holding the body (outward by more than the rounding of its corners).
 Box bounding_box(const Placed& p);
 
-// Kinetic energy plus the potential of the body's constant field, m (v.v / 2 - field.p).
-Dyadic body_energy(const ExactBody& body, const ExactVec& position, const ExactVec& velocity);
+// A box certainly holding the body at every angle: its pivot's disc of reach (a rotating body),
+// else bounding_box(place(body, position)).
+Box reach_box(const ExactBody& body, const ExactVec& position);
+
+// Kinetic energy plus the potential of the body's constant field, m (v.v / 2 - field.p) + I w^2 / 2
+// (the turn's share: 0 for a body that does not rotate, whose inertia is 0).
+Dyadic body_energy(const ExactBody& body, const ExactVec& position, const ExactVec& velocity,
+                   const Dyadic& omega = Dyadic());
 
 }  // namespace pge::oracle::detail

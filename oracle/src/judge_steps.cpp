@@ -19,8 +19,12 @@ namespace {
 
 using Pair = std::pair<BodyIndex, BodyIndex>;  // first < second
 
+// Every body at one instant (fixed: its position, at rest). A rotating body's position is its
+// pivot (judge_scene.hpp, pivot_of), with its angle and angular velocity (0, 0 for one that does
+// not rotate).
 struct Instant {
-  std::vector<ExactVec> position, velocity;  // every body (fixed: its position, at rest)
+  std::vector<ExactVec> position, velocity;
+  std::vector<Dyadic> angle, omega;
 };
 
 // The pairs (not both fixed) whose boxes overlap: a sweep over x.
@@ -50,7 +54,7 @@ std::map<Pair, double> overlaps(const ExactState& s, const Instant& x) {
   std::vector<Placed> placed;
   std::vector<Box> boxes;
   for (BodyIndex i = 0; i < s.bodies.size(); ++i) {
-    placed.push_back(place(s.bodies[i], x.position[i]));
+    placed.push_back(place(s.bodies[i], x.position[i], x.angle[i]));
     boxes.push_back(bounding_box(placed.back()));
   }
   std::map<Pair, double> out;
@@ -61,10 +65,11 @@ std::map<Pair, double> overlaps(const ExactState& s, const Instant& x) {
   return out;
 }
 
-// A box holding the body all through a step of length dt from x: its box at the start grown by
-// |v| dt + |a| dt^2 / 2 (and 1/1000 of that more, for the rounding of these doubles).
+// A box holding the body all through a step of length dt from x: its box at the start (a
+// rotating body's at every angle) grown by |v| dt + |a| dt^2 / 2 (and 1/1000 of that more, for the
+// rounding of these doubles).
 Box swept_box(const ExactBody& b, const ExactVec& p, const ExactVec& v, double dt) {
-  Box box = bounding_box(place(b, p));
+  Box box = reach_box(b, p);
   if (b.fixed) return box;
   const double reach_x = std::abs(v.x.to_double()) * dt + std::abs(b.field_acc.x.to_double()) * dt * dt / 2;
   const double reach_y = std::abs(v.y.to_double()) * dt + std::abs(b.field_acc.y.to_double()) * dt * dt / 2;
@@ -86,7 +91,7 @@ Totals totals(const ExactState& s, const Instant& x) {
   for (BodyIndex i = 0; i < s.bodies.size(); ++i) {
     const ExactBody& b = s.bodies[i];
     if (b.fixed) continue;
-    t.energy += body_energy(b, x.position[i], x.velocity[i]);
+    t.energy += body_energy(b, x.position[i], x.velocity[i], x.omega[i]);
     t.momentum.x += b.mass * x.velocity[i].x;
     t.momentum.y += b.mass * x.velocity[i].y;
   }
@@ -116,11 +121,11 @@ class StepReferee {
       interval_.push_back(interval_model(b));
     }
     map_bodies();
-    start_.position.resize(s.bodies.size());
-    start_.velocity.resize(s.bodies.size());
-    for (BodyIndex i = 0; i < s.bodies.size(); ++i) {
-      start_.position[i] = s.bodies[i].motion.p0;
-      start_.velocity[i] = s.bodies[i].motion.v0;
+    for (const ExactBody& b : s.bodies) {
+      start_.position.push_back(b.motion.p0);
+      start_.velocity.push_back(b.motion.v0);
+      start_.angle.push_back(b.motion.theta0);
+      start_.omega.push_back(b.motion.omega);
     }
   }
 
@@ -183,14 +188,24 @@ class StepReferee {
     for (std::size_t c = 0; c < column_.size(); ++c) {
       const BodyIndex i = column_[c];
       const TraceState& x = s0.bodies[c];
-      const double want[4] = {start_.position[i].x.to_double(), start_.position[i].y.to_double(),
-                              start_.velocity[i].x.to_double(), start_.velocity[i].y.to_double()};
+      // A rotating body's position in a trace is its reference point: the scene's position.
+      const bool rotates = model_.state.bodies[i].rotates;
+      const Vec2d at = rotates ? model_.reference[i] : Vec2d{start_.position[i].x.to_double(), start_.position[i].y.to_double()};
+      const double want[4] = {at.x, at.y, start_.velocity[i].x.to_double(), start_.velocity[i].y.to_double()};
       const double got[4] = {x.position.x, x.position.y, x.velocity.x, x.velocity.y};
       for (int q = 0; q < 4; ++q)
         if (!(Dyadic::from(got[q]) == Dyadic::from(want[q])))
           failer_.fail(s0.line, element, fmt::format("bodies[{}][{}]", c, q),
                        fmt::format("the state at t = 0 is the scene's: body \"{}\" has {} {} there, the trace {}", model_.ids[i],
                                    q < 2 ? "position" : "velocity", want[q], got[q]));
+      if (!rotates) continue;
+      const double want_turn[2] = {start_.angle[i].to_double(), start_.omega[i].to_double()};
+      const double got_turn[2] = {s0.turns[c].angle, s0.turns[c].angular_velocity};
+      for (int q = 0; q < 2; ++q)
+        if (!(Dyadic::from(got_turn[q]) == Dyadic::from(want_turn[q])))
+          failer_.fail(s0.line, element, fmt::format("turns[{}][{}]", c, q),
+                       fmt::format("the state at t = 0 is the scene's: body \"{}\" has {} {} there, the trace {}", model_.ids[i],
+                                   q == 0 ? "angle" : "angular velocity", want_turn[q], got_turn[q]));
     }
     if (!s0.contacts.empty()) failer_.fail(s0.line, element, "contacts", "the step at t = 0 is the start state: it has no contacts");
   }
@@ -202,6 +217,21 @@ class StepReferee {
     if (s.bodies.size() != column_.size())
       failer_.fail(s.line, element, "bodies", fmt::format("has {} states, the trace lists {} bodies", s.bodies.size(), column_.size()));
     for (std::size_t c = 0; c < s.bodies.size(); ++c) failer_.finite(s.bodies[c], s.line, element, fmt::format("bodies[{}]", c));
+    if (s.turns.empty()) {
+      for (std::size_t c = 0; c < column_.size(); ++c)
+        if (model_.state.bodies[column_[c]].rotates)
+          failer_.fail(s.line, element, "turns",
+                       fmt::format("missing: body \"{}\" rotates, and a step gives each listed body's [angle, angular "
+                                   "velocity] in a scene with rotation",
+                                   model_.ids[column_[c]]));
+      return;
+    }
+    if (s.turns.size() != column_.size())
+      failer_.fail(s.line, element, "turns", fmt::format("has {} turns, the trace lists {} bodies", s.turns.size(), column_.size()));
+    for (std::size_t c = 0; c < s.turns.size(); ++c) {
+      failer_.finite(s.turns[c].angle, s.line, element, fmt::format("turns[{}][0]", c));
+      failer_.finite(s.turns[c].angular_velocity, s.line, element, fmt::format("turns[{}][1]", c));
+    }
   }
 
   Instant instant_of(std::size_t k, double t_before) const {
@@ -211,9 +241,19 @@ class StepReferee {
       failer_.fail(s.line, fmt::format("steps[{}]", k), "t",
                    fmt::format("{} is not after the previous step's end {}: step times increase", s.t, t_before));
     Instant x = start_;
+    const Dyadic t = Dyadic::from(s.t);
+    for (BodyIndex i = 0; i < x.angle.size(); ++i)  // fixed bodies that spin, at their constant rate
+      if (model_.state.bodies[i].fixed) x.angle[i] = angle_at(model_.state.bodies[i].motion, t);
     for (std::size_t c = 0; c < column_.size(); ++c) {
-      x.position[column_[c]] = ExactVec::from(s.bodies[c].position);
-      x.velocity[column_[c]] = ExactVec::from(s.bodies[c].velocity);
+      const BodyIndex i = column_[c];
+      x.velocity[i] = ExactVec::from(s.bodies[c].velocity);
+      if (!model_.state.bodies[i].rotates) {  // a turn given for it (0, 0 from a peer) is not read
+        x.position[i] = ExactVec::from(s.bodies[c].position);
+        continue;
+      }
+      x.angle[i] = Dyadic::from(s.turns[c].angle);
+      x.omega[i] = Dyadic::from(s.turns[c].angular_velocity);
+      x.position[i] = pivot_of(model_, i, s.bodies[c].position, s.turns[c].angle);
     }
     return x;
   }
@@ -235,14 +275,19 @@ class StepReferee {
   }
 
   // The exact first contacts in the step from `x` (at t_before) to t_after, of pairs apart at
-  // its start: each body followed on its start-state path up to its first contact.
-  std::map<Pair, double> exact_contacts(double t_before, double t_after, const Instant& x,
-                                        const std::map<Pair, double>& overlap_before) {
+  // its start: each body followed on its start-state path up to its first contact (a rotating
+  // body turning from its recorded angle at its recorded angular velocity). Pairs whose contact
+  // the rotating search cannot decide (UndecidedTime) are returned apart, with the reason.
+  struct StepContacts {
+    std::map<Pair, double> times;
+    std::map<Pair, std::string> undecided;
+  };
+  StepContacts exact_contacts(double t_before, double t_after, const Instant& x, const std::map<Pair, double>& overlap_before) {
     const ExactState& s = model_.state;
     const Dyadic now = Dyadic::from(t_before);
     for (BodyIndex i = 0; i < s.bodies.size(); ++i) {
       if (s.bodies[i].fixed) continue;
-      const ExactMotion m{now, x.position[i], x.velocity[i], s.bodies[i].field_acc};
+      const ExactMotion m{now, x.position[i], x.velocity[i], s.bodies[i].field_acc, {kNoBody, kNoBody}, x.angle[i], x.omega[i]};
       set_motion(exact_[i], m);
       set_motion(interval_[i], m);
     }
@@ -255,18 +300,22 @@ class StepReferee {
       ExactTime time;
     };
     std::vector<Found> found;
+    StepContacts out;
     // dt rounded up: the boxes must hold the whole step.
     const double dt = std::nextafter(tau_hi.to_double(), std::numeric_limits<double>::infinity());
     std::vector<Box> boxes;
     for (BodyIndex i = 0; i < s.bodies.size(); ++i) boxes.push_back(swept_box(s.bodies[i], x.position[i], x.velocity[i], dt));
     for (const Pair& p : box_pairs(s, boxes)) {
       if (overlap_before.count(p)) continue;  // overlapping at the start: a contact already
-      if (const auto r = pair_contact(frame, features_, p.first, p.second, tau_hi, window, options_.referee.filter, n))
-        found.push_back({p, ExactTime(now, r->tau)});
+      try {
+        if (const auto r = pair_contact(frame, features_, p.first, p.second, tau_hi, window, options_.referee.filter, n))
+          found.push_back({p, ExactTime(now, r->tau)});
+      } catch (const UndecidedTime& e) {
+        out.undecided.emplace(p, e.what());
+      }
     }
     std::stable_sort(found.begin(), found.end(), [](const Found& f, const Found& g) { return f.time < g.time; });
     std::map<BodyIndex, ExactTime> first;
-    std::map<Pair, double> out;
     for (const Found& f : found) {
       bool earliest = true;
       for (const BodyIndex i : {f.pair.first, f.pair.second}) {
@@ -277,7 +326,7 @@ class StepReferee {
       if (!earliest) continue;  // its body's path changed at an earlier contact
       for (const BodyIndex i : {f.pair.first, f.pair.second})
         if (!s.bodies[i].fixed) first.emplace(i, f.time);
-      out.emplace(f.pair, f.time.to_double());
+      out.times.emplace(f.pair, f.time.to_double());
     }
     return out;
   }
@@ -299,15 +348,14 @@ class StepReferee {
         ++it;
       }
     }
+    const StepContacts found = exact_contacts(t_before, t_after, x, overlap_before);
     std::map<Pair, std::optional<double>> fresh;
-    for (const auto& [pair, time] : exact_contacts(t_before, t_after, x, overlap_before)) fresh.emplace(pair, time);
+    for (const auto& [pair, time] : found.times) fresh.emplace(pair, time);
     for (const auto& [pair, depth] : overlap_after)
-      if (!overlap_before.count(pair) && !fresh.count(pair) && !open_.count(pair)) fresh.emplace(pair, std::nullopt);
+      if (!overlap_before.count(pair) && !fresh.count(pair) && !open_.count(pair) && !found.undecided.count(pair))
+        fresh.emplace(pair, std::nullopt);
     for (const auto& [pair, time] : fresh) {
-      StepContact c;
-      c.a = model_.ids[pair.first];
-      c.b = model_.ids[pair.second];
-      c.step = k;
+      StepContact c = contact_of(pair, k);
       c.exact_time = time;
       c.off_path = !time;
       out_.contacts.push_back(c);
@@ -323,15 +371,28 @@ class StepReferee {
     // the start-state paths do not follow past (a peer resolving contacts one after another
     // inside a step, as Box2D's continuous sub-steps do, may meet another body on the new path).
     std::set<BodyIndex> moved;
-    for (const auto& [pair, time] : fresh)
+    const auto move = [&moved, this](const Pair& pair) {
       for (const BodyIndex i : {pair.first, pair.second})
         if (!model_.state.bodies[i].fixed) moved.insert(i);
+    };
+    for (const auto& [pair, time] : fresh) move(pair);
+    // A pair whose contact in the step the referee cannot decide: undecided, reported or not (a
+    // report of it is neither on time nor a phantom); its bodies' paths may have changed in the
+    // step, as after a contact.
+    for (const auto& [pair, reason] : found.undecided) {
+      StepContact c = contact_of(pair, k);
+      c.verdict = StepVerdict::Undecided;
+      c.undecided_reason = reason;
+      if (reports.erase(pair)) c.reported_step = k;
+      out_.contacts.push_back(c);
+      move(pair);
+    }
     for (const Pair& pair : reports) {
       // Overlapping or exactly touching at the step's start: a contact already (a phantom is a
       // report whose pair stays apart, with a positive gap, through the whole step).
       if (overlap_before.count(pair) ||
-          separation(place(model_.state.bodies[pair.first], x.position[pair.first]),
-                     place(model_.state.bodies[pair.second], x.position[pair.second]))
+          separation(place(model_.state.bodies[pair.first], x.position[pair.first], x.angle[pair.first]),
+                     place(model_.state.bodies[pair.second], x.position[pair.second], x.angle[pair.second]))
                   .sign <= 0) {
         ++out_.summary.continuing_reports;
         continue;
@@ -340,14 +401,19 @@ class StepReferee {
         ++out_.summary.unfollowed_reports;
         continue;
       }
-      StepContact c;
-      c.a = model_.ids[pair.first];
-      c.b = model_.ids[pair.second];
-      c.step = k;
+      StepContact c = contact_of(pair, k);
       c.verdict = StepVerdict::Phantom;
       c.reported_step = k;
       out_.contacts.push_back(c);
     }
+  }
+
+  StepContact contact_of(const Pair& pair, std::size_t step) const {
+    StepContact c;
+    c.a = model_.ids[pair.first];
+    c.b = model_.ids[pair.second];
+    c.step = step;
+    return c;
   }
 
   void measure_depth(std::size_t index, const Pair& pair, const std::map<Pair, double>& overlap) {
@@ -426,6 +492,7 @@ void summarise(StepJudgement& j) {
         if (c.miss == MissKind::PassThrough) ++s.tunnelled;
         break;
       case StepVerdict::Phantom: ++s.phantom; break;
+      case StepVerdict::Undecided: ++s.undecided; break;
     }
   }
   s.contacts = s.on_time + s.late + s.missed;
@@ -457,6 +524,7 @@ std::string_view step_verdict_name(StepVerdict v) {
     case StepVerdict::Late: return "late";
     case StepVerdict::Missed: return "missed";
     case StepVerdict::Phantom: return "phantom";
+    case StepVerdict::Undecided: return "undecided";
   }
   return "?";
 }
@@ -478,6 +546,9 @@ std::string contact_text(const StepContact& c) {
     case StepVerdict::OnTime: verdict = "on time"; break;
     case StepVerdict::Late: verdict = fmt::format("late by {} step{}", c.late_steps, c.late_steps == 1 ? "" : "s"); break;
     case StepVerdict::Phantom: verdict = "phantom (reported, but the pair stays apart through the step)"; break;
+    case StepVerdict::Undecided:
+      verdict = fmt::format("undecided ({}{})", c.undecided_reason, c.reported_step ? "; reported in the step" : "");
+      break;
     case StepVerdict::Missed:
       switch (c.miss) {
         case MissKind::PassThrough: verdict = "missed (pass-through: tunnelling, never reported)"; break;

@@ -3,7 +3,7 @@
 #  - PGE's own traces (pge run --trace, events mode) get the verdicts pge check gives the same
 #    run, event by event (verdict and ulps): head-on (all agree: exit 0) and the fast solver's pool
 #    break (misorders and phantoms: exit 7; pge check shows fast there for contrast only, the
-#    scene's expect block being for robust and certified);
+#    scene's expect block being for robust and certified), and scenes of rotating bodies;
 #  - hand-made step traces of a bullet and a thin wall (tests/cli/judge/: the bullet meets the
 #    wall at t = (2 - 1/4 - 1/2) / 32 = 5/128 in the first step): passing through without a
 #    report is a miss (exit 7, one line on stderr naming the pass-through), a bounce reported in
@@ -35,6 +35,11 @@ PY
 }
 same_as_check "$scenes/basics/head-on.json" robust 100 0
 same_as_check "$scenes/simultaneous/pool-break.json" fast 300 7
+# Rotating bodies (issue 26): the trace's reference points, angles and angular velocities give the
+# referee pge check's paths. A spinning box sliding into a wall and back; the twelve spinning
+# boxes, two of them with their reference point at a corner (not the pivot they turn about).
+same_as_check "$here/rotating-box.json" robust 50 0
+same_as_check "$scenes/peers/peers-spinning-boxes.json" certified 1000 0
 
 j=$here/judge
 "$expect_error" 7 "bullet-tunnels.jsonl" "\"bullet\"-\"wall\"" "exact t = 0.0390625" "pass-through" -- \
@@ -55,6 +60,14 @@ print("ok: the tunnelling trace's JSON")
 PY
 "$pge" judge "$j/bullet-bounces.jsonl" --scene "$j/bullet-thin-wall.json" | grep -q "on time 1, late 0" ||
   { echo "FAIL: the reported bounce is not on time"; exit 1; }
+# A square turning in place at 1 rad/s next to a wall (square-spins-next-to-a-wall.json): its
+# corner reaches the wall at t = pi/4 - acos((5/8) sqrt 2) = 0.29870320832267516 (in double), in
+# the step (1/4, 3/8]. Skipped by one step from 1/4 to 3/2 (every corner behind the wall's line
+# again there): missed, pass-through (exit 7); struck and reported in its step: on time.
+"$expect_error" 7 "square-skips-the-wall.jsonl" "\"box\"-\"wall\"" "exact t = 0.298703208322675" "pass-through" -- \
+  "$pge" judge "$j/square-skips-the-wall.jsonl" --scene "$j/square-spins-next-to-a-wall.json" --quiet
+"$pge" judge "$j/square-strikes-the-wall.jsonl" --scene "$j/square-spins-next-to-a-wall.json" | grep -q "on time 1, late 0" ||
+  { echo "FAIL: the reported corner strike is not on time"; exit 1; }
 "$expect_error" 12 "bullet-bad-nan.jsonl:2:" "field \"bodies[0][2]\"" "NaN" -- \
   "$pge" judge "$j/bullet-bad-nan.jsonl" --scene "$j/bullet-thin-wall.json"
 "$expect_error" 12 "bullet-bad-body.jsonl:2:" "field \"contacts[0][1]\"" "no body \"wal\"" -- \

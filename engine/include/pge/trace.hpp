@@ -44,7 +44,8 @@ struct TraceContact {
 // in that order; `contacts` the pairs the engine reported during the step, each once. In a scene
 // with rotation `turns` holds each of those bodies' turn at `t`, in the same order (positions
 // are then reference points, turned with the body, and velocities the centre of mass's);
-// otherwise it is empty. The referee does not judge traces of rotating scenes yet (pge check judges PGE's own runs).
+// otherwise it is empty (the referee then reads every body as not turning). The referee follows
+// a turning body between two steps at the recorded angular velocity (pge/judge.hpp).
 struct TraceStep {
   double t = 0;
   std::vector<TraceState> bodies;
@@ -65,6 +66,12 @@ struct TraceCollision {
   // [0, 2]); "" when the trace does not name them (then features and gap are not judged).
   std::string contact;
   unsigned feature_a = 0, feature_b = 0;
+  // A pair with a rotating body (PGE writes these for it; needed when either body turns): each
+  // body's turn just before (its angle, which does not jump, and angular velocity) and the
+  // angular velocities just after, rad/s. `turning` says they were given.
+  bool turning = false;
+  TraceTurn turn_a{}, turn_b{};
+  double wa_after = 0, wb_after = 0;
 };
 
 // How the run ended: at `t`; `reached_until` when it ran to its horizon, so that a contact left

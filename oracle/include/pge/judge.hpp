@@ -5,7 +5,9 @@
 // Events mode (an event-driven engine): every collision is judged as `pge check` judges PGE's
 // (pge/oracle.hpp: agree, tie, time error, misorder, miss, phantom), with exact conservation;
 // the trace's pre-collision states and post-collision velocities are the motions the referee
-// follows from one collision to the next.
+// follows from one collision to the next (a rotating body's too: TraceCollision::turn_a/b and
+// wa_after/wb_after give its angle and spin, and its reference point plus its turned pivot offset
+// its pivot, so PGE's own trace of a run gets pge check's verdicts).
 //
 // Steps mode (a stepping engine): from each step's start state (the previous step's end state,
 // each moving body on the scene's closed-form path p + v tau + a tau^2 / 2 with the scene's
@@ -18,7 +20,16 @@
 //             start (pass-through: tunnelling), or overlapped past the bound
 //             (JudgeOptions::overlap_bound) before a report, or the trace ended first;
 //   phantom:  reported in a step through which the pair stays apart: apart at the step's start
-//             and end, and no exact contact on the closed-form paths in between.
+//             and end, and no exact contact on the closed-form paths in between;
+//   undecided: a pair with a rotating body whose contact in the step the referee cannot decide
+//             (a tangency, a contact at an edge's very end: UndecidedTime), reported or not;
+//             counted apart, neither agreement nor failure.
+// A rotating body (the scene's `angular_velocity` or `angle`, pge-scene/2) is followed the same
+// way: from the step's start state, with the angle and angular velocity the trace gives at the
+// previous step's end (TraceStep::turns), its angle theta + omega (t - t_start) and its pivot
+// (the centre of mass) on the closed-form path above, the contacts found by the certified
+// rotating search (oracle/README.md, "Rotation"). A trace's position of a rotating body is its
+// reference point; the pivot is that plus the turned pivot offset, rounded to double.
 // A pair found overlapping at a step's end that was apart at its start without an exact contact
 // on the start-state paths (a body's path changed inside the step, by another contact) counts as
 // a contact in that step too, without an exact time ("off path"). Reports of a pair overlapping
@@ -75,10 +86,10 @@ struct JudgeOptions {
 };
 
 // A steps-mode contact's verdict (the rules are in this file's opening comment). Missed and
-// Phantom fail a trace (StepJudgement::failed); OnTime and Late do not.
-enum class StepVerdict : unsigned char { OnTime, Late, Missed, Phantom };
-// The verdict's name in `pge judge --json`: "on_time", "late", "missed", "phantom" ("?" for a
-// value outside the enum). Never throws.
+// Phantom fail a trace (StepJudgement::failed); OnTime, Late and Undecided do not.
+enum class StepVerdict : unsigned char { OnTime, Late, Missed, Phantom, Undecided };
+// The verdict's name in `pge judge --json`: "on_time", "late", "missed", "phantom", "undecided"
+// ("?" for a value outside the enum). Never throws.
 std::string_view step_verdict_name(StepVerdict v);
 
 // Why a contact was missed: None (not missed), PassThrough (apart again at a later step start
@@ -103,6 +114,7 @@ struct StepContact {
   // report or miss, and as a fraction of the pair's contact distance.
   double depth = 0;
   double relative_depth = 0;
+  std::string undecided_reason;  // Undecided: what could not be decided (UndecidedTime)
 };
 
 // The counts and extremes of a steps-mode judgement (what `pge judge` prints). Energies are
@@ -112,6 +124,7 @@ struct StepSummary {
   std::size_t steps = 0;     // Trace::steps.size()
   std::size_t contacts = 0;  // exact contacts (on time + late + missed)
   std::size_t on_time = 0, late = 0, missed = 0, phantom = 0;
+  std::size_t undecided = 0;           // not among the contacts: neither agreement nor failure
   std::size_t tunnelled = 0;           // of the missed: pass-through
   std::size_t continuing_reports = 0;  // reports of a pair overlapping or touching at the step's start
   // Reports of a pair apart at the step's start, one of whose moving bodies has an exact contact

@@ -60,7 +60,7 @@ struct Outcome {
   // Peers run with Record::StepTrace: the run as a step trace (pge/trace.hpp, steps mode: each
   // step's end time, every moving body's state then (in a scene with rotation its angle and
   // angular velocity too), the pairs the engine reported in the step; engine = the setting's
-  // label), for the referee (pge/judge.hpp; it does not judge traces of rotating scenes yet). It is recorded between the
+  // label), for the referee (pge/judge.hpp, which follows a turning body from each recorded angle and angular velocity). It is recorded between the
   // timed Step calls, so wall_seconds does not include it, but for Box2D's note of each contact
   // that begins (a callback inside Step: one vector append per beginning contact, recorded
   // whether a trace is asked for or not). Empty otherwise.
