@@ -23,7 +23,7 @@ namespace {
 
 std::vector<std::string> regression_scenes() {
   std::vector<std::string> out;
-  for (const auto& e : std::filesystem::directory_iterator(PGE_REGRESSIONS_DIR))
+  for (const auto& e : std::filesystem::recursive_directory_iterator(PGE_REGRESSIONS_DIR))
     if (e.path().extension() == ".json") out.push_back(e.path().string());
   std::sort(out.begin(), out.end());
   return out;
