@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Seeds the libFuzzer corpora from the fixtures (fuzz/README.md):
-#   OUT/reader  every fixtures/**/*.json as it is (good and bad scenes alike)
+#   OUT/reader  every fixtures/**/*.json as it is (good and bad scenes alike) but fixtures/known-failures/
 #   OUT/engine  every fixture scene that reads, encoded into fuzz_engine's byte format by
 #               pge_fuzz_encode (built in the fuzz build directory)
 # Existing files in OUT are kept: libFuzzer adds what it finds to the same directories.
@@ -38,7 +38,9 @@ if [[ ! -x "$encoder" ]]; then
 fi
 
 mkdir -p "$out/reader" "$out/engine"
-mapfile -t scenes < <(find "$root/fixtures" -name '*.json' | sort)
+# Not fixtures/known-failures/: what the engine still fails (docs/rotation.md) would stop every
+# campaign at its first input (libFuzzer runs the seeds first and ends at the first finding).
+mapfile -t scenes < <(find "$root/fixtures" -name '*.json' -not -path '*/known-failures/*' | sort)
 for f in "${scenes[@]}"; do
   # Named after the path below fixtures/, so that scenes/x.json and bad/x.json do not collide.
   rel=${f#"$root/fixtures/"}
