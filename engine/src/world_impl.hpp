@@ -222,9 +222,10 @@ template <class T> struct World<T>::Impl {
   // The search covers [now, min(limit, horizon)]: a contact later than the owner's best event
   // is not the owner's next event, and a rotating search costs in proportion to its window.
   std::optional<PredictedContact<T>> predict_rotating(BodyIndex lo, BodyIndex hi, const T& limit);
-  // The search itself (predict_rotating asks the pair's memo first); `clear` is set to the time
-  // before which it proved that nothing touches.
-  std::optional<PredictedContact<T>> search_rotating(BodyIndex lo, BodyIndex hi, const T& limit, T& clear);
+  // The search itself from `from` (now, or where the pair's memo says nothing touches before:
+  // predict_rotating asks it first); `clear` is set to the time before which it proved that
+  // nothing touches.
+  std::optional<PredictedContact<T>> search_rotating(BodyIndex lo, BodyIndex hi, const T& limit, const T& from, T& clear);
   // A scheduled contact of a rotating pair as the predictor's contact record, at time t.
   detail::RotatingContact<T> rotating_record(const Scheduled<T>& s, const T& t) const;
   // The contact's point and normal (from lo towards hi) at time t.

@@ -68,7 +68,9 @@ template <class T> inline auto World<T>::Impl::rotating_shape(const Body& b) con
 // one: collide, rest, leave, set_velocity): its contact, still ahead, is the pair's first
 // contact whatever the caller's limit (a search with a smaller limit would stop short of it and
 // be of no use to the caller either way); a window searched clear up to past what is asked is
-// answered as a resume entry at its end. Anything else is searched from `now`, as without it.
+// answered as a resume entry at its end; one searched clear up to a time short of what is asked
+// is searched on from there, as the resume entry at that time would have it (the search starts
+// anew at that time, its overlap rule with it). Anything else is searched from `now`.
 template <class T>
 inline auto World<T>::Impl::predict_rotating(BodyIndex lo, BodyIndex hi, const T& limit)
     -> std::optional<PredictedContact<T>> {
@@ -87,8 +89,11 @@ inline auto World<T>::Impl::predict_rotating(BodyIndex lo, BodyIndex hi, const T
       return out;
     }
   }
-  T clear = now;
-  std::optional<PredictedContact<T>> out = search_rotating(lo, hi, limit, clear);
+  T from = now;
+  if (memo != memos.end() && memo->version_lo == v_lo && memo->version_hi == v_hi && memo->clear > now)
+    from = memo->clear;  // no contact before it, and none found at it (else answered above)
+  T clear = from;
+  std::optional<PredictedContact<T>> out = search_rotating(lo, hi, limit, from, clear);
   // Stale memos (either body moved since) go before this one is kept: at most one per partner
   // met since the lower body's last change.
   std::erase_if(memos, [&](const RotatingMemo& m) {
@@ -99,7 +104,7 @@ inline auto World<T>::Impl::predict_rotating(BodyIndex lo, BodyIndex hi, const T
 }
 
 template <class T>
-inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T& limit, T& clear)
+inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T& limit, const T& from, T& clear)
     -> std::optional<PredictedContact<T>> {
   using std::abs;
   using std::sqrt;
@@ -110,17 +115,17 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   // spin times its reach). A search costs in proportion to its window (a box per near miss or
   // turn), and the first predictions of a run, with no best event to stop at, would otherwise
   // search to the horizon; past the window the pair is predicted again (a resume entry).
-  const Kinematics<T> ka = kinematics(bodies[lo], now), kb = kinematics(bodies[hi], now);
+  const Kinematics<T> ka = kinematics(bodies[lo], from), kb = kinematics(bodies[hi], from);
   const Vec2<T> dv = kb.v - ka.v;
   const T speed = sqrt(dot(dv, dv)) + abs(sa.path.omega) * sa.reach + abs(sb.path.omega) * sb.reach;
   const T span = T(kRotatingWindowReaches) * (sa.reach + sb.reach);
-  T end = speed > T(0) && span / speed < wanted - now ? now + span / speed : wanted;
-  if (!(end > now)) end = std::min(wanted, detail::interval_next_up(now));  // progress, however late the clock
+  T end = speed > T(0) && span / speed < wanted - from ? from + span / speed : wanted;
+  if (!(end > from)) end = std::min(wanted, detail::interval_next_up(from));  // progress, however late the clock
   detail::RotatingOptions options;
   options.correctly_rounded = solver == SolverKind::Certified;
   const detail::RotatingContact<T> c =
-      solver == SolverKind::Fast ? detail::predict_rotating_pair_fast(sa, sb, now, end)
-                                 : detail::predict_rotating_pair(sa, sb, now, end, StartRule::OverlapCollides, options);
+      solver == SolverKind::Fast ? detail::predict_rotating_pair_fast(sa, sb, from, end)
+                                 : detail::predict_rotating_pair(sa, sb, from, end, StartRule::OverlapCollides, options);
   if (c.rounding_undecided) ++counts.undecided_roundings;
   PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
   out.rotating = true;
@@ -135,7 +140,7 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
     clear = c.t;
     // Progress every time: a search that stopped where it started resumes an ulp later.
     out.resume = true;
-    if (!(out.time > now)) out.time = detail::interval_next_up(now);
+    if (!(out.time > from)) out.time = detail::interval_next_up(from);
     if (out.time > horizon) return std::nullopt;
     return out;
   }
