@@ -913,6 +913,52 @@ TEST(RotationPairs, BoundingCirclesThatNeverMeetCostOneQuadraticSearch) {
   EXPECT_GE(without.boxes, 1000u);
 }
 
+TEST(RotationPairs, BoundingCirclesMeetNoLaterThanTheClosedForm) {
+  // World::Impl::predict_rotating answers "no contact" for a pair whose bounding circles cannot
+  // meet before the time asked (bounding_circles_meet None): it must never say so, nor place the
+  // meeting later, for circles that do meet. Centres on straight lines, reaches r_a + r_b = R:
+  // |d + u t| = R first at t = (-(d.u) - sqrt((d.u)^2 - |u|^2 (|d|^2 - R^2))) / |u|^2, in 50
+  // digits from the stored doubles. Pairs aimed past each other by more than R never meet.
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<V> square{{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
+  int met = 0, apart = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const double scale = std::pow(10.0, 6 * u(rng) - 3);
+    std::vector<V> a_shape, b_shape;
+    for (const V& v : square) a_shape.push_back(v * scale);
+    for (const V& v : square) b_shape.push_back(v * (scale * (0.2 + u(rng))));
+    const double cx = u(rng) < 0.5 ? 0.0 : 1e6;
+    const V pa{cx, cx}, pb{cx + scale * (3 + 10 * u(rng)), cx + scale * (20 * u(rng) - 10)};
+    const double speed = std::pow(10.0, 4 * u(rng) - 2);
+    const V va{speed * (u(rng) - 0.5), speed * (u(rng) - 0.5)}, vb{-speed * u(rng), speed * (u(rng) - 0.5)};
+    Body A{{0, pa, va, {0, 0}, 0.3, 20 * u(rng) - 10}, 0, a_shape};
+    Body B{{0, pb, vb, {0, 0}, -1.1, 20 * u(rng) - 10}, 0, b_shape};
+    const Shape sa = A.shape(), sb = B.shape();
+    const double hi = 100 * scale / speed;
+    const auto meet = pge::detail::bounding_circles_meet(sa, sb, 0.0, hi, 100000);
+    ASSERT_TRUE(meet.has_value()) << i;  // apart at the start
+    const VH d = high(pb) - high(pa), w = high(vb) - high(va);
+    const High R = High(sa.reach) + High(sb.reach);
+    const High b = dot(d, w), a2 = dot(w, w), c = dot(d, d) - R * R;
+    const High disc = b * b - a2 * c;
+    const bool meets = disc >= 0 && b < 0 && (-b - boost::multiprecision::sqrt(disc)) / a2 <= High(hi);
+    if (!meets) {
+      ++apart;
+      // Nothing to hold: a None here is right, and a Root is only a bound that is too early.
+      continue;
+    }
+    ++met;
+    const High want = (-b - boost::multiprecision::sqrt(disc)) / a2;
+    ASSERT_EQ(meet->status, RootStatus::Root) << i << ": circles meeting at " << want << " ruled out";
+    EXPECT_LE(High(meet->t), want) << i;
+    EXPECT_LT(rel(High(meet->t), want), 1e-4) << i;  // a bound, not a slack one
+  }
+  std::printf("bounding circles: %d pairs meeting (none ruled out, none placed late), %d apart\n", met, apart);
+  EXPECT_GT(met, 200);
+  EXPECT_GT(apart, 200);
+}
+
 TEST(RotationPairs, ABoxBudgetGivesProgressAndTheSameContact) {
   // A slow approach with fast spins (up to ~500 turns before contact): with a budget of 20 boxes
   // per search the predictor returns Undecided with a time up to which nothing touches; predicting

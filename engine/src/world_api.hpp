@@ -86,6 +86,9 @@ template <class T> std::size_t World<T>::memory_bytes() const {
     bytes += (s.local.capacity() + s.world.capacity() + s.edges.capacity()) * sizeof(Vec2<T>) +
              s.edge_length.capacity() * sizeof(T);
   }
+  for (const auto& r : w.spins)
+    bytes += r.vertices.capacity() * sizeof(Vec2<T>) + r.memos.capacity() * sizeof(typename Impl::RotatingMemo);
+  bytes += w.spins.capacity() * sizeof(typename Impl::Spin);
   bytes += w.moving.capacity() * sizeof(BodyIndex) + w.heap.memory_bytes();
   bytes += w.seen.capacity() * sizeof(std::uint32_t) +
            w.globals.capacity() * sizeof(BodyIndex) + w.grid.memory_bytes();

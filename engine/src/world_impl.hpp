@@ -120,11 +120,20 @@ template <class T> struct World<T>::Impl {
   // `vertices` are the shape's points about the pivot in the body's frame, `pivot` the pivot
   // relative to the scene's `position` at angle 0 (a moving polygon's centroid, a moving
   // segment's midpoint, zero for a fixed body), so the scene's position is p(t) - R(angle) pivot.
+  // A rotating pair's last prediction, kept by its lower body (world_rotation.hpp,
+  // predict_rotating): valid while neither body's version has moved.
+  struct RotatingMemo {
+    BodyIndex partner;                       // the higher body
+    std::uint64_t version_lo, version_hi;    // the bodies' versions when it was made
+    T clear;                                 // no contact in [the search's now, clear)
+    std::optional<PredictedContact<T>> result;  // what the search returned
+  };
   struct Spin {
     T theta0{}, omega{};
     T inertia{}, inv_inertia{};  // 0 and 0 for a fixed body
     Vec2<T> pivot;
     std::vector<Vec2<T>> vertices;
+    std::vector<RotatingMemo> memos;  // pairs with a higher body (rotating or not)
   };
 
   struct Timer {
@@ -213,6 +222,10 @@ template <class T> struct World<T>::Impl {
   // The search covers [now, min(limit, horizon)]: a contact later than the owner's best event
   // is not the owner's next event, and a rotating search costs in proportion to its window.
   std::optional<PredictedContact<T>> predict_rotating(BodyIndex lo, BodyIndex hi, const T& limit);
+  // The search itself from `from` (now, or where the pair's memo says nothing touches before:
+  // predict_rotating asks it first); `clear` is set to the time before which it proved that
+  // nothing touches.
+  std::optional<PredictedContact<T>> search_rotating(BodyIndex lo, BodyIndex hi, const T& limit, const T& from, T& clear);
   // A scheduled contact of a rotating pair as the predictor's contact record, at time t.
   detail::RotatingContact<T> rotating_record(const Scheduled<T>& s, const T& t) const;
   // The contact's point and normal (from lo towards hi) at time t.

@@ -36,6 +36,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <vector>
 #include <type_traits>
@@ -87,6 +88,22 @@ template <class B> struct Certifying { using type = Quad; };
 template <> struct Certifying<float> { using type = double; };
 template <> struct Certifying<Quad> { using type = void; };
 
+// Where the bounding circles of two shapes (their reaches about their centres) can first meet
+// in [lo, hi]: nothing if they overlap at lo; else the earliest root of |d|^2 - (reach_a +
+// reach_b)^2 (a polynomial: no waves), None if they stay apart to hi, Undecided at the box
+// budget with the time up to which they certainly do. Before a Root's t the squared distance
+// is certainly above the reaches' sum squared.
+template <class B>
+std::optional<WaveRoot<B>> bounding_circles_meet(const RotatingShape<B>& a, const RotatingShape<B>& b, const B& lo,
+                                                 const B& hi, std::uint64_t max_boxes) {
+  WaveSum<B> reach;
+  reach.origin = lo;
+  const Interval<B> r = Interval<B>(a.reach) + Interval<B>(b.reach);
+  reach.base = squared_norm(relative_centre(path_at(a.path, lo), path_at(b.path, lo))) + constant_poly(-(r * r));
+  if (!reach(Interval<B>(lo)).positive()) return std::nullopt;
+  return earliest_wave_root(reach, lo, hi, StartRule::CrossingsOnly, max_boxes);
+}
+
 template <class B> class RotatingPairPredictor {
  public:
   RotatingPairPredictor(const RotatingShape<B>& a, const RotatingShape<B>& b, StartRule rule, RotatingOptions opt)
@@ -99,14 +116,10 @@ template <class B> class RotatingPairPredictor {
     const PathAt<B> pa = path_at(a_.path, lo), pb = path_at(b_.path, lo);
     B from = lo;
     if (opt_.bounding_circles) {
-      WaveSum<B> reach;
-      reach.origin = lo;
-      const Interval<B> r = Interval<B>(a_.reach) + Interval<B>(b_.reach);
-      reach.base = squared_norm(relative_centre(pa, pb)) + constant_poly(-(r * r));
       // Apart at lo: nothing can touch before the bounding circles do. (Overlapping at lo, even
       // while separating, a turning corner may still strike: the search starts at lo.)
-      if (reach(Interval<B>(lo)).positive()) {
-        const WaveRoot<B> meet = earliest_wave_root(reach, lo, hi, StartRule::CrossingsOnly, opt_.max_boxes);
+      if (const std::optional<WaveRoot<B>> circles = bounding_circles_meet(a_, b_, lo, hi, opt_.max_boxes)) {
+        const WaveRoot<B>& meet = *circles;
         best_.boxes += meet.boxes;
         if (meet.status == RootStatus::None) return best_;
         if (meet.status == RootStatus::Undecided) {
