@@ -210,13 +210,18 @@ int main(int argc, char** argv) {
       "  several sizes, timed), drift (energy along one long gas run), peers (the pge compare scenes,\n"
       "  fixtures/scenes/peers, by PGE in every solver x scalar asked for and by Box2D and Chipmunk at\n"
       "  every setting; full report only, unless --parts names it). Quick: 500 events per scene, 12\n"
-      "  random scenes, gas at 100 and 1,000, a 20,000-event drift run (about 1 minute of CPU; 4\n"
-      "  minutes on 2 cores under heavy load). Full: 2,000 events, 100 random scenes, gas up to 10,000,\n"
-      "  200,000 events of drift.\n"
+      "  random scenes, gas at 100 and 1,000, a 20,000-event drift run (about 1 minute of CPU). Full:\n"
+      "  2,000 events, 100 random scenes, gas up to 10,000, 200,000 events of drift (about 20 minutes\n"
+      "  of CPU, most of it the peers part's 1,000-ball gases and quad; shared by the cores, --jobs).\n"
       "Progress: on a terminal (or with --progress), one line redrawn in place: rows done, the part,\n"
       "  time elapsed and an estimate of the time left; with --progress-lines, for logs, a line per part\n"
       "  every 30 s and when it ends. At the end: the path of index.html and the headline numbers, a\n"
       "  line per solver x scalar (misses, p99 and worst time error, worst ulps, events/s, Pareto).\n"
+      "Parallel: --jobs N (default: one per core) measures N rows at once, each in a worker process\n"
+      "  forked from the report, the heaviest rows first; the rows, their order and every figure but\n"
+      "  the timings are those of --jobs 1. A timed run then runs beside the other workers' work\n"
+      "  (meta.jobs says so; pge gate measures as its baseline was measured). A worker that dies costs\n"
+      "  its row (a failed run naming the signal); the rest are written and the exit code is 1.\n"
       "Sharding: --shard i/n runs every n-th item from i and writes results.json only; join the shards\n"
       "  with --merge DIR... --out DIR, which writes the pages.\n") + kExitCodeHelp);
   report_cmd->add_option("--out,-o", report.out, "Output directory")->capture_default_str();
@@ -241,6 +246,10 @@ int main(int argc, char** argv) {
       ->transform(kEventCount);
   report_cmd->add_option("--repeats", report.repeats, "Timed runs per row, at least (default: 3 quick, 5 full; the median counts)")
       ->check(CLI::Range(1u, 1000u));
+  report_cmd->add_option("--jobs,-j", report.jobs,
+                         "Rows measured at once, each by a worker process (default 0: one per core; 1: one at a time, "
+                         "in this process)")
+      ->check(CLI::Range(0u, 256u));
   report_cmd->add_option("--shard", report_shard, "i/n: run the i-th of n disjoint parts (0-based); results.json only");
   report_cmd->add_option("--merge", report.merge, "Merge shards' results (directories holding results.json, or files) into --out");
   report_cmd->add_flag("--allow-partial", report.allow_partial, "With --merge: merge even when shards are missing");
@@ -309,6 +318,10 @@ int main(int argc, char** argv) {
   gate_cmd->add_option("--parts", gate.report.parts, "When measuring: parts (as pge report)")
       ->check(CLI::IsMember({"accuracy", "scaling", "drift", "peers"}))
       ->delimiter(',');
+  gate_cmd->add_option("--jobs,-j", gate.report.jobs,
+                       "When measuring: rows at once (as pge report; default: as the baseline was measured, its "
+                       "meta.jobs, 1 for a baseline older than --jobs; without a baseline, one per core)")
+      ->check(CLI::Range(0u, 256u));
   gate_cmd->add_flag("--progress", gate.report.progress, "Show the measuring's progress on stderr");
   gate_cmd->add_flag("--progress-lines", gate.report.progress_lines,
                      "Show the measuring's progress for a log: a line per part every 30 s and when it ends");

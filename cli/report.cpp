@@ -5,6 +5,7 @@
 #include "exit_codes.hpp"
 #include "render.hpp"
 #include "report_progress.hpp"
+#include "report_workers.hpp"
 #include "run.hpp"
 #include "scene_files.hpp"
 
@@ -23,13 +24,18 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
+#include <sys/resource.h>
 #include <sys/utsname.h>
+#include <time.h>
 #include <thread>
+#include <utility>
 #include <unistd.h>
 
 #ifndef PGE_SOURCE_DIR
@@ -324,24 +330,47 @@ std::string scene_fingerprint(const Scene& scene) {
   return fmt::format("{:016x}", h.value());
 }
 
-Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
+// A row's identity (kind, family, scene, configuration): what it is before it is measured.
+Row row_of(const Item& it) {
   Row row;
   row.kind = it.kind;
   row.solver = it.config.solver;
   row.scalar = it.config.scalar;
+  switch (it.kind) {
+    case RowKind::Accuracy:
+    case RowKind::Peer:
+      row.family = it.scene->family;
+      row.scene = it.scene->name;
+      row.bodies = it.scene->loaded.scene.bodies.size();
+      break;
+    case RowKind::Scaling:
+      row.family = "gas";
+      row.scene = fmt::format("gas-{}", it.bodies);
+      break;
+    case RowKind::Drift:
+      row.family = "gas";
+      row.scene = fmt::format("gas-{}-drift", it.bodies);
+      break;
+  }
+  return row;
+}
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+Row measure_row(const Item& it, const Settings& s, std::uint64_t seed) {
+  Row row = row_of(it);
   try {
     switch (it.kind) {
       case RowKind::Accuracy:
-        row.family = it.scene->family;
-        row.scene = it.scene->name;
-        row.bodies = it.scene->loaded.scene.bodies.size();
         row.elastic = elastic(it.scene->loaded.scene);
         row.scene_hash = scene_fingerprint(it.scene->loaded.scene);
         measure_accuracy(row, *it.scene, s);
         break;
       case RowKind::Scaling: {
-        row.family = "gas";
-        row.scene = fmt::format("gas-{}", it.bodies);
         const std::uint64_t events = std::max<std::uint64_t>(5000, 10ull * it.bodies);
         const Scene scene = make_gas(gas_params(it.bodies, events, seed));
         row.bodies = scene.bodies.size();
@@ -350,9 +379,6 @@ Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
         break;
       }
       case RowKind::Peer: {
-        row.family = it.scene->family;
-        row.scene = it.scene->name;
-        row.bodies = it.scene->loaded.scene.bodies.size();
         row.elastic = elastic(it.scene->loaded.scene);
         row.scene_hash = scene_fingerprint(it.scene->loaded.scene);
         if (!it.scene->reference) it.scene->reference = peers::reference_positions(it.scene->loaded.scene, -1);
@@ -371,8 +397,6 @@ Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
         break;
       }
       case RowKind::Drift: {
-        row.family = "gas";
-        row.scene = fmt::format("gas-{}-drift", it.bodies);
         const Scene scene = make_gas(gas_params(it.bodies, s.drift_events, seed));
         row.bodies = scene.bodies.size();
         row.scene_hash = scene_fingerprint(scene);
@@ -391,6 +415,16 @@ Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
   } catch (const std::exception& e) {
     row.error = e.what();
   }
+  return row;
+}
+
+// measure_row, and what it cost.
+Row measure(const Item& it, const Settings& s, std::uint64_t seed) {
+  const auto start = Clock::now();
+  const double cpu = thread_cpu_seconds();
+  Row row = measure_row(it, s, seed);
+  row.cost_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  row.cost_cpu_seconds = thread_cpu_seconds() - cpu;
   return row;
 }
 
@@ -527,6 +561,49 @@ int write_outputs(const ReportOptions& o, const Results& r, const std::vector<Sc
   return kExitOk;
 }
 
+std::size_t bodies_of(const Item& it) { return it.scene ? it.scene->loaded.scene.bodies.size() : it.bodies; }
+
+// The order workers take items in: the heaviest first (row_weight), so that no long row starts last
+// while the other workers run out of work; and the parts whose rows run longest first: peers (Box2D
+// at 60 Hz on a 1,000-ball gas runs for minutes), drift, scaling, accuracy.
+std::vector<std::size_t> heaviest_first(const std::vector<Item>& items, std::vector<std::size_t> order) {
+  const auto part = [](RowKind k) {
+    switch (k) {
+      case RowKind::Peer: return 0;
+      case RowKind::Drift: return 1;
+      case RowKind::Scaling: return 2;
+      case RowKind::Accuracy: return 3;
+    }
+    return 4;
+  };
+  const auto key = [&](std::size_t k) {
+    const Item& it = items[k];
+    return std::make_pair(part(it.kind), -row_weight(it.kind, it.config.scalar, bodies_of(it)));
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+  return order;
+}
+
+// User and system time of this process and of its workers (those that have ended), since it began.
+double cpu_seconds_so_far() {
+  const auto seconds = [](int who) {
+    rusage u{};
+    getrusage(who, &u);
+    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  };
+  return seconds(RUSAGE_SELF) + seconds(RUSAGE_CHILDREN);
+}
+
+unsigned jobs_of(const ReportOptions& o) { return o.jobs > 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency()); }
+
+// For the tests of --jobs only: a worker measuring a row whose label holds $PGE_REPORT_TEST_CRASH
+// dies as a crash would (SIGABRT), so that a test can see the report keep the other rows.
+void crash_if_asked(const std::string& label) {
+  const char* needle = std::getenv("PGE_REPORT_TEST_CRASH");
+  if (needle && *needle && label.find(needle) != std::string::npos) std::abort();
+}
+
 std::string results_path(const std::string& given) {
   return fs::is_directory(given) ? (fs::path(given) / "results.json").string() : given;
 }
@@ -602,20 +679,22 @@ int make_report(const ReportOptions& o, Results& results) {
   results.meta.items = items.size();
   std::vector<double> calibration{calibration_seconds(5)};
 
-  std::size_t mine = 0;
-  for (std::size_t k = o.shard; k < items.size(); k += o.shards) ++mine;
+  std::vector<std::size_t> mine;  // this shard's items, in the order of the rows
+  for (std::size_t k = o.shard; k < items.size(); k += o.shards) mine.push_back(k);
+  const unsigned jobs = static_cast<unsigned>(std::min<std::size_t>(std::max<std::size_t>(1, mine.size()), jobs_of(o)));
+  results.meta.jobs = jobs;
   if (!o.quiet) {
-    fmt::print("report: {} of {} items (shard {}/{}), {} scenes, writing {}\n", mine, items.size(), o.shard, o.shards,
-               scenes.size(), o.out);
-    std::fflush(stdout);  // before the progress on stderr, in a log too
+    fmt::print("report: {} of {} items (shard {}/{}), {} scenes, {} at once, writing {}\n", mine.size(), items.size(),
+               o.shard, o.shards, scenes.size(), jobs, o.out);
+    std::fflush(stdout);  // before the progress on stderr, in a log too; and before workers fork
   }
   std::vector<ReportProgress::Planned> parts;
-  for (std::size_t k = o.shard; k < items.size(); k += o.shards) parts.push_back({items[k].kind, items[k].config.scalar});
+  for (std::size_t k : mine) parts.push_back({items[k].kind, items[k].config.scalar, bodies_of(items[k])});
   ReportProgress progress(o.quiet ? ProgressStyle::None
                           : o.progress_lines ? ProgressStyle::Lines
                           : o.progress       ? ProgressStyle::Terminal
                                              : ProgressStyle::None,
-                          parts, o.quick);
+                          parts, o.quick, jobs);
   const auto start = Clock::now();
   // Long sweeps keep what they measured: every 30 s the rows so far go to results.partial.json
   // (removed when the results are written).
@@ -623,38 +702,77 @@ int make_report(const ReportOptions& o, Results& results) {
   auto next_checkpoint = start + std::chrono::seconds(30);
   std::error_code dir_error;
   fs::create_directories(o.out, dir_error);
-  std::size_t done = 0;
-  for (std::size_t k = o.shard; k < items.size(); k += o.shards) {
-    if (Clock::now() >= next_checkpoint && !dir_error) {
-      next_checkpoint = Clock::now() + std::chrono::seconds(30);
-      try {
-        report::write_results(partial.string(), results);
-      } catch (const report::ReportError& e) {
-        fmt::print(stderr, "pge report: {} (going on)\n", e.what());
-      }
+  // Rows are kept in the order of the items, whichever worker measured them and when.
+  std::vector<std::optional<Row>> rows(mine.size());
+  std::vector<std::size_t> place(items.size());
+  for (std::size_t i = 0; i < mine.size(); ++i) place[mine[i]] = i;
+  const auto rows_so_far = [&] {
+    Results r{results.meta, {}};
+    for (const std::optional<Row>& row : rows)
+      if (row) r.rows.push_back(*row);
+    return r;
+  };
+  const auto checkpoint = [&] {
+    if (Clock::now() < next_checkpoint || dir_error) return;
+    next_checkpoint = Clock::now() + std::chrono::seconds(30);
+    try {
+      report::write_results(partial.string(), rows_so_far());
+    } catch (const report::ReportError& e) {
+      fmt::print(stderr, "pge report: {} (going on)\n", e.what());
     }
-    progress.begin(done, item_label(items[k]));
-    results.rows.push_back(measure(items[k], s, o.seed));
-    progress.end();
-    const Row& row = results.rows.back();
+  };
+  const auto begin = [&](std::size_t k) { progress.begin(place[k], item_label(items[k])); };
+  const auto done = [&](std::size_t k, Row row) {
+    progress.end(place[k]);
     if (!row.error.empty() && !o.quiet) {
       progress.interrupt();
       fmt::print(stderr, "pge report: {}: {}\n", item_label(items[k]), row.error);
     }
-    ++done;
+    rows[place[k]] = std::move(row);
+    checkpoint();
+  };
+  std::size_t deaths = 0;
+  if (jobs == 1) {
+    for (std::size_t k : mine) {
+      begin(k);
+      done(k, measure(items[k], s, o.seed));
+    }
+  } else {
+    WorkerTasks tasks;
+    tasks.measure = [&](std::size_t k) {
+      crash_if_asked(item_label(items[k]));
+      return measure(items[k], s, o.seed);
+    };
+    tasks.failed = [&](std::size_t k, const std::string& why) {
+      Row row = row_of(items[k]);
+      row.error = why;
+      return row;
+    };
+    tasks.begin = begin;
+    tasks.done = done;
+    tasks.fork_guard = [&](const std::function<void()>& f) { progress.hold(f); };
+    deaths = measure_in_workers(heaviest_first(items, mine), jobs, tasks);
   }
+  results.rows = rows_so_far().rows;
   progress.finish();
   calibration.push_back(calibration_seconds(5));
   results.meta.calibration_seconds = std::min(calibration[0], calibration[1]);
   if (o.shards > 1) results.meta.shards_merged = {o.shard};
   ReportOptions out = o;
   out.page = o.page && o.shards == 1;
-  const int code = write_outputs(out, results, &scenes);
+  int code = write_outputs(out, results, &scenes);
   if (code == kExitOk) fs::remove(partial, dir_error);
+  if (code == kExitOk && deaths > 0) {
+    // The results are written, the lost rows marked as failed runs (the gate fails on them); a
+    // crash is a bug.
+    fmt::print(stderr, "pge report: {} worker process(es) died; each row it was measuring is a failed run in {}\n",
+               deaths, (fs::path(o.out) / "results.json").string());
+    code = kExitInternal;
+  }
   if (code == kExitOk && !o.quiet) {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    fmt::print("report: {} rows in {:.1f} s{}; {}\n", results.rows.size(), elapsed,
-               elapsed >= 60 ? " (" + short_duration(elapsed) + ")" : std::string(),
+    fmt::print("report: {} rows in {:.1f} s{}, {:.1f} s of CPU, {} at once; {}\n", results.rows.size(), elapsed,
+               elapsed >= 60 ? " (" + short_duration(elapsed) + ")" : std::string(), cpu_seconds_so_far(), jobs,
                out.page ? "open " + (fs::path(o.out) / "index.html").string()
                         : "merge the shards with: pge report --merge DIR... --out DIR");
     if (out.page && o.headline) print_headline(stdout, results);
@@ -698,6 +816,9 @@ int gate_command(const GateOptions& o) {
     if (have_baseline) {
       ro.quick = baseline.meta.quick;
       ro.seed = baseline.meta.seed;
+      // Rows timed beside another worker run slower than alone, and not all alike: the speed
+      // quotients are compared between runs made the same way.
+      if (ro.jobs == 0) ro.jobs = baseline.meta.jobs;
     }
     ro.out = (fs::path(o.out) / "report").string();
     ro.headline = false;  // the gate's summary says what matters

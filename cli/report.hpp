@@ -24,6 +24,7 @@ struct ReportOptions {
   unsigned repeats = 0;             // timed runs per row, at least; 0: 3 quick, 5 full
   std::vector<std::string> parts;   // accuracy, scaling, drift; empty: all
   unsigned shard = 0, shards = 1;
+  unsigned jobs = 0;                // rows measured at once, by worker processes; 0: one per core
   std::vector<std::string> merge;   // results to merge (directories holding results.json, or files)
   bool allow_partial = false;       // merge even when shards are missing
   std::string inject;               // a deliberate regression, for testing the gate: fast-solver, slow

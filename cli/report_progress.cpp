@@ -16,17 +16,16 @@ using report::RowKind;
 // The part names the user reads (the row kinds, "peers" as in --parts).
 const char* part_name(RowKind k) { return k == RowKind::Peer ? "peers" : report::row_kind_name(k); }
 
-// Seconds per row of weight 1 (a double row) of a part not yet started, before a row of it says
-// how fast it goes: from the bundled quick sweep on 2 busy cores (AMD EPYC, RelWithDebInfo, load
-// 6: 195 s for 780 accuracy rows, 3 s for 6 scaling rows, 21 s for 12 drift rows, 3 s for the 96
-// rows of the small peer scenes), the full sweep's guessed from its larger budgets. Only the
-// estimate of the time left uses them, scaled by how this run's finished parts compare with them.
+// Seconds per weight (row_weight) of a part not yet started, before a row of it says how fast
+// it goes: from sweeps of the bundled scenes (RelWithDebInfo with PGE_VALIDATE, CPU seconds, AMD
+// EPYC; December 2026). Only the estimate of the time left uses them, scaled by how this run's
+// finished parts compare with them.
 double prior_seconds(RowKind k, bool quick) {
   switch (k) {
-    case RowKind::Accuracy: return quick ? 0.15 : 0.6;
-    case RowKind::Scaling: return quick ? 0.5 : 5.0;
-    case RowKind::Drift: return quick ? 1.1 : 11.0;
-    case RowKind::Peer: return quick ? 0.05 : 3.0;
+    case RowKind::Accuracy: return quick ? 0.01 : 0.04;
+    case RowKind::Scaling: return quick ? 0.5 : 1.0;
+    case RowKind::Drift: return quick ? 0.56 : 5.6;
+    case RowKind::Peer: return quick ? 0.02 : 0.25;
   }
   return 1;
 }
@@ -39,6 +38,21 @@ int terminal_columns() {
 
 }  // namespace
 
+double row_weight(RowKind kind, const std::string& scalar, std::size_t bodies) {
+  const auto ends_with = [&scalar](const std::string& tail) {
+    return scalar.size() >= tail.size() && scalar.compare(scalar.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  const double arithmetic = ends_with("quad") ? 8 : ends_with("long-double") ? 2.5 : 1;  // peer rows: "robust/quad"
+  const double n = static_cast<double>(bodies);
+  switch (kind) {
+    case RowKind::Accuracy:
+    case RowKind::Peer: return arithmetic * (1 + n / 20);
+    case RowKind::Scaling: return arithmetic * (0.5 + n / 1000);  // 10 events per body, at least 5,000
+    case RowKind::Drift: return arithmetic;
+  }
+  return arithmetic;
+}
+
 std::string short_duration(double seconds) {
   if (!(seconds >= 0) || !std::isfinite(seconds)) return "?";
   const auto s = static_cast<long long>(std::llround(seconds));
@@ -47,11 +61,11 @@ std::string short_duration(double seconds) {
   return fmt::format("{}h{:02d}m", s / 3600, (s % 3600) / 60);
 }
 
-ReportProgress::ReportProgress(ProgressStyle style, const std::vector<Planned>& plan, bool quick)
-    : style_(style), quick_(quick), start_(Clock::now()), item_start_(start_), last_line_(start_) {
+ReportProgress::ReportProgress(ProgressStyle style, const std::vector<Planned>& plan, bool quick, unsigned workers)
+    : style_(style), quick_(quick), workers_(std::max(1u, workers)), start_(Clock::now()), last_line_(start_) {
   for (const Planned& item : plan) {
     if (parts_.empty() || parts_.back().kind != item.kind) parts_.push_back({item.kind});
-    const double w = item.scalar == "quad" ? 3 : item.scalar == "long-double" ? 1.5 : 1;
+    const double w = row_weight(item.kind, item.scalar, item.bodies);
     ++parts_.back().rows;
     parts_.back().weight += w;
     part_of_.push_back(parts_.size() - 1);
@@ -61,6 +75,7 @@ ReportProgress::ReportProgress(ProgressStyle style, const std::vector<Planned>& 
   if (style_ == ProgressStyle::Lines) {
     std::string what;
     for (const Part& p : parts_) what += fmt::format("{}{} {} rows", what.empty() ? "" : ", ", part_name(p.kind), p.rows);
+    if (workers_ > 1) what += fmt::format(" ({} at once)", workers_);
     fmt::print(stderr, "measuring: {}\n", what);
     std::fflush(stderr);
   }
@@ -74,8 +89,8 @@ ReportProgress::ReportProgress(ProgressStyle style, const std::vector<Planned>& 
       if (cv_.wait_until(lock, due, [this] { return stop_; })) break;
       if (style_ == ProgressStyle::Terminal) {
         if (drawn_) draw();
-      } else if (Clock::now() >= last_line_ + every && current_ < part_of_.size()) {
-        fmt::print(stderr, "{}\n", part_line(parts_[part_of_[current_]]));
+      } else if (Clock::now() >= last_line_ + every && part_at_work()) {
+        fmt::print(stderr, "{}\n", part_line(*part_at_work()));
         std::fflush(stderr);
         last_line_ = Clock::now();
       }
@@ -87,9 +102,13 @@ ReportProgress::~ReportProgress() { finish(); }
 
 double ReportProgress::elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
+const ReportProgress::Part* ReportProgress::part_at_work() const {
+  return at_work_.empty() ? nullptr : &parts_[part_of_[at_work_.front().item]];
+}
+
 double ReportProgress::part_rate(const Part& p) const {
   // This run's pace in the part once it has one, else the prior scaled by the pace of the parts
-  // done so far against their priors.
+  // done so far against their priors. A pace is a worker's seconds per weight.
   if (p.done > 0) return p.seconds / p.done_weight;
   double spent = 0, expected = 0;
   for (const Part& q : parts_)
@@ -101,14 +120,18 @@ double ReportProgress::part_rate(const Part& p) const {
 }
 
 double ReportProgress::seconds_left() const {
-  double left = 0;
-  for (const Part& p : parts_) left += part_rate(p) * (p.weight - p.done_weight);
-  // The row at work has already taken some of its share (and no more than that, when it runs long).
-  if (current_ < part_of_.size()) {
-    const double in_row = std::chrono::duration<double>(Clock::now() - item_start_).count();
-    left -= std::min(in_row, part_rate(parts_[part_of_[current_]]) * weight_[current_]);
+  // The work left in a worker's seconds, shared by the workers; but no sooner than the row at
+  // work that has the most of its own share left.
+  double work = 0, longest = 0;
+  for (const Part& p : parts_) work += part_rate(p) * (p.weight - p.done_weight);
+  for (const AtWork& a : at_work_) {
+    // A row at work has already taken some of its share (and no more than that, when it runs long).
+    const double share = part_rate(parts_[part_of_[a.item]]) * weight_[a.item];
+    const double in_row = std::min(share, std::chrono::duration<double>(Clock::now() - a.start).count());
+    work -= in_row;
+    longest = std::max(longest, share - in_row);
   }
-  return std::max(0.0, left);
+  return std::max({0.0, work / workers_, longest});
 }
 
 std::string ReportProgress::part_line(const Part& p) const {
@@ -117,9 +140,17 @@ std::string ReportProgress::part_line(const Part& p) const {
 }
 
 void ReportProgress::draw() {
-  const Part& p = parts_[part_of_[current_]];
-  std::string line = fmt::format("[{}/{}] {} {}/{}, {} elapsed, ~{} left: {}", done_ + 1, part_of_.size(), part_name(p.kind),
-                                 p.done + 1, p.rows, short_duration(elapsed()), short_duration(seconds_left()), label_);
+  const Part* p = part_at_work();
+  if (!p) return;
+  std::string labels;
+  std::size_t in_part = 0;  // rows of p at work
+  for (const AtWork& a : at_work_) {
+    labels += (labels.empty() ? "" : " | ") + a.label;
+    in_part += &parts_[part_of_[a.item]] == p;
+  }
+  std::string line = fmt::format("[{}/{}] {} {}/{}, {} elapsed, ~{} left: {}", done_ + at_work_.size(), part_of_.size(),
+                                 part_name(p->kind), p->done + in_part, p->rows, short_duration(elapsed()),
+                                 short_duration(seconds_left()), labels);
   const auto width = static_cast<std::size_t>(terminal_columns() - 1);
   if (line.size() > width) line.resize(width);
   fmt::print(stderr, "\r{}\x1b[K", line);
@@ -129,27 +160,33 @@ void ReportProgress::draw() {
 
 void ReportProgress::begin(std::size_t k, const std::string& label) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  current_ = k;
-  label_ = label;
-  item_start_ = Clock::now();
-  if (style_ == ProgressStyle::Terminal && k < part_of_.size()) draw();
+  if (k >= part_of_.size()) return;
+  at_work_.push_back({k, label, Clock::now()});
+  if (style_ == ProgressStyle::Terminal) draw();
 }
 
-void ReportProgress::end() {
+void ReportProgress::end(std::size_t k) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (current_ >= part_of_.size()) return;
-  Part& p = parts_[part_of_[current_]];
-  p.seconds += std::chrono::duration<double>(Clock::now() - item_start_).count();
+  const auto it = std::find_if(at_work_.begin(), at_work_.end(), [k](const AtWork& a) { return a.item == k; });
+  if (it == at_work_.end()) return;
+  Part& p = parts_[part_of_[k]];
+  p.seconds += std::chrono::duration<double>(Clock::now() - it->start).count();
+  at_work_.erase(it);
   ++p.done;
-  p.done_weight += weight_[current_];
+  p.done_weight += weight_[k];
   ++done_;
   if (style_ == ProgressStyle::Lines && p.done == p.rows) {
-    fmt::print(stderr, "{}: {}/{} rows in {}, {} elapsed{}\n", part_name(p.kind), p.done, p.rows, short_duration(p.seconds),
-               short_duration(elapsed()),
+    fmt::print(stderr, "{}: {}/{} rows in {}, {} elapsed{}\n", part_name(p.kind), p.done, p.rows,
+               short_duration(p.seconds) + (workers_ > 1 ? " of work" : ""), short_duration(elapsed()),
                done_ < part_of_.size() ? fmt::format(", ~{} left", short_duration(seconds_left())) : std::string());
     std::fflush(stderr);
     last_line_ = Clock::now();
   }
+}
+
+void ReportProgress::hold(const std::function<void()>& f) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  f();
 }
 
 void ReportProgress::interrupt() {

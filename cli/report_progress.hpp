@@ -7,6 +7,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -20,26 +21,38 @@ enum class ProgressStyle {
   Lines,     // for logs: a line per part every 30 s and when the part ends, nothing redrawn
 };
 
+// A row's expected cost relative to others of its part (a double row of a few bodies weighs
+// about 1): quad rows weigh 8 (software arithmetic), long double 2.5, and larger scenes more (the
+// oracle's work per event grows with the bodies, and a peer scene's steps with them). The report
+// hands rows to its workers the heaviest first, and the estimate of the time left weighs rows so.
+double row_weight(report::RowKind kind, const std::string& scalar, std::size_t bodies);
+
 // Time in a short human form: "45s", "3m05s", "1h02m".
 std::string short_duration(double seconds);
 
 class ReportProgress {
  public:
-  // What is to be measured, in order (the items of a part together): each item's part and its
-  // scalar (quad rows take about 3 times as long as double rows, long double 1.5).
+  // What is to be measured, in order (the items of a part together): each item's part, its scalar
+  // (peer rows: the setting) and its scene's bodies, which weigh it (row_weight).
   struct Planned {
     report::RowKind kind;
     std::string scalar;
+    std::size_t bodies = 0;
   };
-  // quick: the sweep (it sets the prior cost of a row in a part not yet started).
-  ReportProgress(ProgressStyle style, const std::vector<Planned>& plan, bool quick);
+  // quick: the sweep (it sets the prior cost of a row in a part not yet started); workers: how
+  // many items are measured at once (pge report --jobs), which divides the time left.
+  ReportProgress(ProgressStyle style, const std::vector<Planned>& plan, bool quick, unsigned workers = 1);
   ~ReportProgress();
   ReportProgress(const ReportProgress&) = delete;
   ReportProgress& operator=(const ReportProgress&) = delete;
-  // Before item k (0-based, in the order above) is measured; label: what it is.
+  // Before item k (0-based, in the order above) is measured; label: what it is. Up to `workers`
+  // items are at work at once, begun and ended in any order.
   void begin(std::size_t k, const std::string& label);
-  // After it was measured.
-  void end();
+  // After item k was measured.
+  void end(std::size_t k);
+  // Runs f while the ticker can print nothing (it prints holding the same lock): a process forked
+  // in f finds no stdio lock taken.
+  void hold(const std::function<void()>& f);
   // Before anything else goes to stderr mid-sweep (an error line): clears the redrawn line.
   void interrupt();
   // After the last item: stops the ticker, clears the redrawn line.
@@ -50,7 +63,7 @@ class ReportProgress {
   struct Part {
     report::RowKind kind;
     std::size_t rows = 0, done = 0;
-    double weight = 0, done_weight = 0;  // of its rows, of its done rows (a double row weighs 1)
+    double weight = 0, done_weight = 0;  // of its rows, of its done rows (row_weight)
     double seconds = 0;                  // spent on its done rows
   };
   double elapsed() const;
@@ -58,15 +71,23 @@ class ReportProgress {
   double part_rate(const Part& p) const;  // estimated seconds per weight of its rows
   std::string part_line(const Part& p) const;
   void draw();  // the redrawn line (Terminal), with mutex_ held
+  const Part* part_at_work() const;  // the part of the item at work longest (nullptr: none)
+
+  struct AtWork {
+    std::size_t item;
+    std::string label;
+    Clock::time_point start;
+  };
 
   ProgressStyle style_;
   bool quick_;
+  unsigned workers_;
   std::vector<Part> parts_;
   std::vector<std::size_t> part_of_;  // item -> index in parts_
   std::vector<double> weight_;        // item -> its weight
-  std::size_t current_ = 0, done_ = 0;
-  std::string label_;  // the row at work
-  Clock::time_point start_, item_start_, last_line_;
+  std::size_t done_ = 0;
+  std::vector<AtWork> at_work_;  // the items being measured, the longest at work first
+  Clock::time_point start_, last_line_;
   bool drawn_ = false;
   // The ticker thread redraws the terminal's line every second and prints a log's line every
   // 30 s, also while one row takes long; mutex_ guards everything above against it.

@@ -11,10 +11,13 @@
 # every fixture, solver and scalar judged by the exact oracle (500 contact events per scene, 12
 # random scenes), the gas at 100 and 1,000 bodies, a 20,000-event drift run, and PGE against
 # Box2D and Chipmunk on the head-on, Newton's cradle, bullet and snooker scenes of
-# fixtures/scenes/peers. About 1 minute of CPU: 1 to 2 minutes on 2 idle cores, 4 minutes on 2
-# cores under heavy load (the first build aside). --full runs the full sweep instead: 2,000
-# events per scene, 100 random scenes, the gas up to 10,000, a 200,000-event drift run, and the
-# peers part on every compare scene (the two 1,000-ball gases too); 20 minutes or more on 2 cores.
+# fixtures/scenes/peers. About 1 minute of CPU (the first build aside). --full runs the full sweep
+# instead: 2,000 events per scene, 100 random scenes, the gas up to 10,000, a 200,000-event drift
+# run, and the peers part on every compare scene (the two 1,000-ball gases too): about 20 minutes
+# of CPU, most of it the peers part on the two gases and the quad rows. Rows are measured on every
+# core at once (pge report --jobs, default one per core; pass --jobs 1 for one at a time), so the
+# wall time is about the CPU time over the cores, but never less than the longest single row (Box2D
+# at 60 Hz on the gas under gravity, about 2 minutes); the line at the end says how long it took.
 #
 # While it measures: on a terminal, one line redrawn in place (rows done, the part, time elapsed
 # and left); otherwise (a log, CI) a line per part every 30 s and when the part ends, e.g.

@@ -123,6 +123,46 @@ TEST(ReportData, JsonRoundTripKeepsEveryField) {
   }
 }
 
+// pge report --jobs: a worker hands its row to the report as one line of JSON; the row must come
+// back exactly (its verdicts and figures are compared with --jobs 1's by cli_report_jobs).
+TEST(ReportData, ARowRoundTripsThroughOneLineExactly) {
+  Row a = sample().rows[0];
+  a.rel_max = HUGE_VAL;
+  a.energy_drift = 0.1 + 0.2;  // no short decimal form
+  a.overlap = std::nan("");
+  a.error = "a message, with \"quotes\"\nand a newline";
+  a.cost_seconds = 1.25;
+  a.cost_cpu_seconds = 1.0 / 3;
+  a.series = {{1, 1e-300}, {2, -2.5e-17}};
+  const std::string line = row_to_json_line(a);
+  EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+  const Row b = row_from_json_line(line);
+  EXPECT_EQ(row_to_json_line(b), line);
+  EXPECT_EQ(b.key(), a.key());
+  EXPECT_EQ(b.rel_max, a.rel_max);
+  EXPECT_EQ(b.energy_drift, a.energy_drift);
+  EXPECT_TRUE(std::isnan(b.overlap));
+  EXPECT_EQ(b.error, a.error);
+  EXPECT_EQ(b.cost_cpu_seconds, a.cost_cpu_seconds);
+  EXPECT_EQ(b.rel_hist, a.rel_hist);
+  EXPECT_EQ(b.series, a.series);
+  EXPECT_THROW(row_from_json_line("{\"kind\": \"accuracy\"}"), ReportError);
+  EXPECT_THROW(row_from_json_line("not json"), ReportError);
+}
+
+// meta.jobs (rows measured at once) is kept, and a report made before it reads as one at a time.
+TEST(ReportData, JobsAreRecordedAndDefaultToOne) {
+  Results a = sample();
+  a.meta.jobs = 2;
+  EXPECT_EQ(from_json_text(to_json_text(a), "test").meta.jobs, 2u);
+  std::string old = to_json_text(sample());
+  const std::string field = "\"jobs\":1,";  // keys in order: "os" follows
+  const std::size_t at = old.find(field);
+  ASSERT_NE(at, std::string::npos) << old.substr(0, 600);
+  old.erase(at, field.size());
+  EXPECT_EQ(from_json_text(old, "old").meta.jobs, 1u);
+}
+
 TEST(ReportData, CorruptResultsAreRefusedWithTheirOrigin) {
   const std::string good = to_json_text(sample());
   EXPECT_THROW(from_json_text(good.substr(0, good.size() / 2), "half.json"), ReportError);

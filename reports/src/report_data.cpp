@@ -58,7 +58,8 @@ json row_json(const Row& r) {
          {"ulps_p99", jnum(r.ulps_p99)}, {"ulps_max", jnum(r.ulps_max)}, {"rel_p99", jnum(r.rel_p99)}, {"rel_max", jnum(r.rel_max)},
          {"energy_drift", jnum(r.energy_drift)}, {"momentum_drift", jnum(r.momentum_drift)}, {"overlap", jnum(r.overlap)}, {"tunnelled", r.tunnelled}, {"final_error", jnum(r.final_error)},
          {"repeats", r.repeats}, {"wall_seconds", jnum(r.wall_seconds)}, {"wall_min_seconds", jnum(r.wall_min_seconds)},
-         {"events_per_second", jnum(r.events_per_second)}, {"ns_per_prediction", jnum(r.ns_per_prediction)}};
+         {"events_per_second", jnum(r.events_per_second)}, {"ns_per_prediction", jnum(r.ns_per_prediction)},
+         {"cost_seconds", jnum(r.cost_seconds)}, {"cost_cpu_seconds", jnum(r.cost_cpu_seconds)}};
   // The histogram sparsely ([bucket, count] pairs) and the series as pairs.
   json hist = json::array();
   for (std::size_t b = 0; b < r.rel_hist.size(); ++b)
@@ -116,6 +117,9 @@ Row row_from(const json& j) {
   r.wall_min_seconds = number(j, "wall_min_seconds");
   r.events_per_second = number(j, "events_per_second");
   r.ns_per_prediction = number(j, "ns_per_prediction");
+  // Absent in reports made before they existed.
+  if (j.contains("cost_seconds")) r.cost_seconds = number(j, "cost_seconds");
+  if (j.contains("cost_cpu_seconds")) r.cost_cpu_seconds = number(j, "cost_cpu_seconds");
   for (const json& pair : j.at("rel_hist")) {
     const auto b = pair.at(0).get<std::size_t>();
     if (b >= static_cast<std::size_t>(kRelBuckets)) throw ReportError(fmt::format("histogram bucket {} out of range", b));
@@ -131,7 +135,8 @@ json meta_json(const Meta& m) {
               {"compiler", m.compiler}, {"build_type", m.build_type}, {"validate", m.validate},
               {"sanitize", m.sanitize}, {"cpu", m.cpu}, {"os", m.os}, {"cores", m.cores}, {"quick", m.quick},
               {"seed", m.seed}, {"shard", m.shard}, {"shards", m.shards}, {"shards_merged", m.shards_merged},
-              {"injected", m.injected}, {"calibration_seconds", m.calibration_seconds}, {"items", m.items}};
+              {"injected", m.injected}, {"calibration_seconds", m.calibration_seconds}, {"items", m.items},
+              {"jobs", m.jobs}};
 }
 
 Meta meta_from(const json& j) {
@@ -156,6 +161,7 @@ Meta meta_from(const json& j) {
   m.injected = j.at("injected").get<std::string>();
   m.calibration_seconds = number(j, "calibration_seconds");
   m.items = j.at("items").get<std::uint64_t>();
+  m.jobs = j.value("jobs", 1u);  // absent in reports made before --jobs: one at a time
   if (m.shards == 0 || m.shard >= m.shards) throw ReportError(fmt::format("shard {}/{} is not a shard", m.shard, m.shards));
   return m;
 }
@@ -188,6 +194,16 @@ Results from_json_text(const std::string& text, const std::string& origin) {
     throw ReportError(origin + ": " + e.what());
   } catch (const json::exception& e) {
     throw ReportError(origin + ": not a pge-report/1 results file: " + e.what());
+  }
+}
+
+std::string row_to_json_line(const Row& row) { return row_json(row).dump(); }
+
+Row row_from_json_line(const std::string& line) {
+  try {
+    return row_from(json::parse(line));
+  } catch (const json::exception& e) {
+    throw ReportError(std::string("not a pge-report/1 row: ") + e.what());
   }
 }
 
@@ -262,6 +278,7 @@ Results merge(const std::vector<Results>& parts, bool allow_partial) {
       out.rows.push_back(row);
     }
     out.meta.dirty = out.meta.dirty || m.dirty;
+    out.meta.jobs = std::max(out.meta.jobs, m.jobs);
     calibration_sum += m.calibration_seconds;
   }
   out.meta.calibration_seconds = calibration_sum / static_cast<double>(parts.size());

@@ -28,12 +28,15 @@ want = ["certified/float", "certified/quad", "robust/float", "robust/quad"]
 assert got == want, got
 assert all(r["error"] == "" and r["energy_drift"] == 0 and r["final_error"] == 0 for r in rows), rows
 PY
-# Progress for a log (--progress-lines): the plan, a line as each part ends; then index.html's path
-# and the headline numbers (a line per solver x scalar) on stdout.
+# Progress for a log (--progress-lines): the plan (with several workers, how many rows at once), a
+# line as each part ends (its rows' time, "of work" when added up over workers; the time left but
+# after the last part); then index.html's path and the headline numbers (a line per solver x
+# scalar) on stdout.
 "$pge" report --quick --scenes "$fixtures/scenes/basics/head-on.json" --random 0 --solvers robust --scalars double,quad \
   --parts accuracy,drift --out "$out/l" --progress-lines >"$out/l.out" 2>"$out/l.err" || fail "pge report --progress-lines exited with $?"
-grep -q '^measuring: accuracy 2 rows, drift 2 rows$' "$out/l.err" || fail "no plan line in: $(cat "$out/l.err")"
-grep -Eq '^accuracy: 2/2 rows in [0-9]+s, [0-9]+s elapsed, ~[0-9ms]+ left$' "$out/l.err" || fail "no accuracy line in: $(cat "$out/l.err")"
+grep -Eq '^measuring: accuracy 2 rows, drift 2 rows( \([0-9]+ at once\))?$' "$out/l.err" || fail "no plan line in: $(cat "$out/l.err")"
+grep -Eq '^accuracy: 2/2 rows in [0-9]+s( of work)?, [0-9]+s elapsed(, ~[0-9ms]+ left)?$' "$out/l.err" ||
+  fail "no accuracy line in: $(cat "$out/l.err")"
 grep -Eq '^drift: 2/2 rows in ' "$out/l.err" || fail "no drift line in: $(cat "$out/l.err")"
 grep -q "open $out/l/index.html" "$out/l.out" || fail "index.html's path not said: $(cat "$out/l.out")"
 grep -Eq '^robust/quad +0 ' "$out/l.out" || fail "no headline line for robust/quad: $(cat "$out/l.out")"

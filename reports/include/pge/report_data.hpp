@@ -71,6 +71,11 @@ struct Row {
   double events_per_second = 0;
   double ns_per_prediction = 0;
 
+  // What measuring the row cost in all (its judged run, a peer scene's reference, every timed
+  // run): wall seconds and the CPU seconds of the thread that measured it. Not compared by the
+  // gate; they show where a sweep's time goes, and the progress estimate learns from them.
+  double cost_seconds = 0, cost_cpu_seconds = 0;
+
   // Drift (kind Drift): (contact events so far, relative energy drift) along the run.
   std::vector<std::pair<double, double>> series;
 
@@ -100,6 +105,9 @@ struct Meta {
   // like a slower engine.
   double calibration_seconds = 0;
   std::uint64_t items = 0;  // work items of the whole sweep (every shard)
+  // Worker processes that measured rows at once (pge report --jobs): with more than 1, a row's
+  // timed runs ran beside another worker's work, on another core.
+  unsigned jobs = 1;
 };
 
 struct Results {
@@ -112,6 +120,10 @@ std::string to_json_text(const Results& r);
 Results from_json_text(const std::string& text, const std::string& origin);
 Results read_results(const std::string& path);
 void write_results(const std::string& path, const Results& r);  // throws ReportError
+// One row as one line of JSON (no newline) and back, exactly (pge report --jobs: a worker process
+// hands its rows to the parent this way); row_from_json_line throws ReportError.
+std::string row_to_json_line(const Row& row);
+Row row_from_json_line(const std::string& line);
 // CSV, one row per scene x configuration, a header line first; the histogram and the series stay
 // in the JSON.
 void write_csv(std::ostream& out, const Results& r);
