@@ -186,8 +186,8 @@ void print_table(const CompareOptions& opt, const LoadedScene& scene, double hor
 
 int compare_command(const CompareOptions& opt) {
   for (const std::string& p : opt.peers)
-    if (p != "box2d" && p != "chipmunk") {
-      fmt::print(stderr, "pge compare: unknown peer \"{}\" (known: box2d, chipmunk)\n", p);
+    if (p != "box2d" && p != "chipmunk" && p != "box2d3") {
+      fmt::print(stderr, "pge compare: unknown peer \"{}\" (known: box2d, chipmunk, box2d3)\n", p);
       return kExitUsage;
     }
   const std::optional<LoadedScene> read = load_scene("compare", opt.scene);
@@ -200,7 +200,8 @@ int compare_command(const CompareOptions& opt) {
     for (const std::string& scalar : opt.scalars) settings.push_back(peers::pge_setting(solver, scalar));
   for (const std::string& p : opt.peers) {
     if (!peers::available(p)) {
-      fmt::print(stderr, "pge compare: {} is not installed (Debian: {}); skipped\n", p, peers::peer_package(p));
+      fmt::print(stderr, "pge compare: {} is not installed ({}{}); skipped\n", p, p == "box2d3" ? "" : "Debian: ",
+                 peers::peer_package(p));
       continue;
     }
     for (const peers::Setting& s : peers::default_settings(p)) settings.push_back(s);

@@ -10,6 +10,8 @@
 #include "run.hpp"
 #include "stdout.hpp"
 
+#include "pge/peers.hpp"
+
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
@@ -333,7 +335,7 @@ int main(int argc, char** argv) {
       "rates and iteration counts: wall time, energy and momentum drift, penetration, tunnelling, final-state error "
       "against PGE certified double (a Markdown table).");
   compare_cmd->add_option("scene", compare.scene, "A scene file (pge-scene JSON)")->required();
-  compare_cmd->add_option("--peers", compare.peers, "Peers beside PGE: box2d, chipmunk")->delimiter(',')->capture_default_str();
+  CLI::Option* compare_peers = compare_cmd->add_option("--peers", compare.peers, "Peers beside PGE: box2d, chipmunk, box2d3 (Box2D v3, when this build has it: scripts/build-box2d3.sh; then also in the default)")->delimiter(',')->capture_default_str();
   compare_cmd->add_option("--solvers", compare.solvers, "PGE's solvers: fast, robust, certified")
       ->delimiter(',')
       ->check(CLI::IsMember({"fast", "robust", "certified"}))
@@ -449,7 +451,10 @@ int main(int argc, char** argv) {
       return gate_command(gate);
     }
     if (render_cmd->parsed()) return render_command(render);
-    if (compare_cmd->parsed()) return compare_command(compare);
+    if (compare_cmd->parsed()) {
+      if (compare_peers->count() == 0 && pge::peers::available("box2d3")) compare.peers.emplace_back("box2d3");
+      return compare_command(compare);
+    }
     if (judge_cmd->parsed()) {
       if (OutputFile::names_stdout(judge.json)) judge.quiet = true;  // stdout holds the JSON alone
       return judge_command(judge);

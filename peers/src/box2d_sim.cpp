@@ -46,7 +46,7 @@ b2Vec2 to_b2(Vec2d v, double scale) {
 class Box2dSim final : public PeerSim {
  public:
   Box2dSim(const Scene& scene, const Setting& setting)
-      : scene_(scene), setting_(setting), scale_(box2d_length_scale(scene, setting.hz)), world_(b2Vec2(0.0f, 0.0f)) {
+      : scene_(scene), setting_(setting), scale_(box2d_length_scale(scene, setting.hz, static_cast<double>(b2_linearSlop))), world_(b2Vec2(0.0f, 0.0f)) {
     world_.SetAllowSleeping(false);
     world_.SetContinuousPhysics(true);
     world_.SetSubStepping(false);
@@ -85,9 +85,7 @@ class Box2dSim final : public PeerSim {
 
   void reported_pairs(std::vector<Pair>& out) const override {
     touching_pairs(out);
-    out.insert(out.end(), listener_.begun.begin(), listener_.begun.end());
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    add_pairs_once(out, listener_.begun);
   }
 
  private:
@@ -131,10 +129,7 @@ class Box2dSim final : public PeerSim {
         fd.shape = &circle;
         break;
       case ShapeKind::Polygon: {
-        if (d.vertices.size() > static_cast<std::size_t>(b2_maxPolygonVertices))
-          throw PeerUnsupported("body \"" + d.id + "\": a polygon of " + std::to_string(d.vertices.size()) +
-                                " vertices; Box2D takes at most b2_maxPolygonVertices = " +
-                                std::to_string(b2_maxPolygonVertices));
+        require_vertices_at_most(d, static_cast<std::size_t>(b2_maxPolygonVertices), "Box2D takes at most b2_maxPolygonVertices");
         std::vector<b2Vec2> v;
         for (const Vec2d& p : pb.points) v.push_back(to_b2(p, scale_));
         polygon.Set(v.data(), static_cast<int32>(v.size()));
@@ -176,30 +171,6 @@ class Box2dSim final : public PeerSim {
 };
 
 }  // namespace
-
-double box2d_length_scale(const Scene& scene, double hz) {
-  const double inf = std::numeric_limits<double>::infinity();
-  double smallest = inf, fastest = 0, shortest_side = inf;
-  const double extent = scene_extent(scene);
-  for (const BodyDesc& b : scene.bodies) {
-    for (std::size_t k = 0; k < b.vertices.size(); ++k)
-      shortest_side = std::min(shortest_side, std::hypot(b.vertices[(k + 1) % b.vertices.size()].x - b.vertices[k].x,
-                                                         b.vertices[(k + 1) % b.vertices.size()].y - b.vertices[k].y));
-    if (b.fixed) continue;
-    smallest = std::min(smallest, b.shape == ShapeKind::Segment ? std::hypot(b.b.x - b.a.x, b.b.y - b.a.y) : body_size(b));
-    fastest = std::max(fastest, std::sqrt(dot(b.velocity, b.velocity) + 2 * std::hypot(field_acceleration(scene, b).x,
-                                                                                      field_acceleration(scene, b).y) * extent));
-  }
-  double scale = std::isfinite(smallest) && smallest > 0 ? 1 / smallest : 1.0;
-  if (fastest > 0) scale = std::min(scale, hz / fastest);  // at most 1 length unit per step
-  // But every polygon side at least b2_linearSlop: Box2D welds closer vertices (and asserts on
-  // the degenerate hull). The shape wins over the speed: a faster body is then capped by
-  // b2_maxTranslation, which the measures show.
-  scale = std::exp2(std::floor(std::log2(scale)));
-  if (std::isfinite(shortest_side) && scale * shortest_side < static_cast<double>(b2_linearSlop))
-    scale = std::exp2(std::ceil(std::log2(static_cast<double>(b2_linearSlop) / shortest_side)));
-  return scale;
-}
 
 std::unique_ptr<PeerSim> make_box2d(const Scene& scene, const Setting& setting) {
   return std::make_unique<Box2dSim>(scene, setting);

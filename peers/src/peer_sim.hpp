@@ -5,9 +5,11 @@
 #include "pge/peers.hpp"
 #include "pge/scene.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -43,6 +45,23 @@ class PeerSim {
 inline Vec2d field_acceleration(const Scene& scene, const BodyDesc& b) {
   return (b.gravity ? scene.world.gravity : Vec2d{}) + b.acceleration;
 }
+// Throws PeerUnsupported when polygon `d` has more vertices than the peer takes (`limit`: the
+// peer's name for its bound, e.g. "Box2D takes at most b2_maxPolygonVertices").
+inline void require_vertices_at_most(const BodyDesc& d, std::size_t most, const std::string& limit) {
+  if (d.vertices.size() > most)
+    throw PeerUnsupported("body \"" + d.id + "\": a polygon of " + std::to_string(d.vertices.size()) + " vertices; " +
+                          limit + " = " + std::to_string(most));
+}
+
+// `out` with `more` appended, sorted and each pair once: what reported_pairs returns for a peer
+// that reports the pairs touching after a step and those that began in it.
+inline void add_pairs_once(std::vector<std::pair<std::size_t, std::size_t>>& out,
+                           const std::vector<std::pair<std::size_t, std::size_t>>& more) {
+  out.insert(out.end(), more.begin(), more.end());
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
 // A body's restitution as PGE resolves it (< 0: the world's).
 inline double restitution_of(const Scene& scene, const BodyDesc& b) {
   return b.restitution < 0 ? scene.world.restitution : b.restitution;
@@ -65,9 +84,10 @@ inline Vec2d scene_position(const RigidFrame& f, Vec2d origin, double angle) {
   return f.rotates ? origin - rotated(angle, f.pivot) : origin;
 }
 
-// Both throw PeerUnsupported for a scene the peer cannot take.
+// Each throws PeerUnsupported for a scene the peer cannot take.
 std::unique_ptr<PeerSim> make_box2d(const Scene& scene, const Setting& setting);
 std::unique_ptr<PeerSim> make_chipmunk(const Scene& scene, const Setting& setting);
+std::unique_ptr<PeerSim> make_box2d3(const Scene& scene, const Setting& setting);
 
 // Box2D's lengths are compile-time constants in metres (box2d/b2_common.h, b2_lengthUnitsPerMeter
 // = 1): b2_linearSlop 0.005 (overlap the solver leaves alone), b2_polygonRadius 0.01 (a skin
@@ -77,7 +97,9 @@ std::unique_ptr<PeerSim> make_chipmunk(const Scene& scene, const Setting& settin
 // and 1% of it) unless that would let the fastest body move more than 1 (half the cap) per step.
 // The fastest speed is estimated from energy: sqrt(|v|^2 + 2 |field acceleration| * extent).
 // Every polygon side must stay at least b2_linearSlop long (Box2D welds closer vertices): where
-// that needs a larger scale, the shape wins and the speed cap shows in the measures.
-double box2d_length_scale(const Scene& scene, double hz);
+// that needs a larger scale, the shape wins and the speed cap shows in the measures. Box2D v3
+// (box2d3_sim.cpp) has the same slop at one length unit per metre and takes the same scale; its
+// speed cap, a world setting (400 units/s by default), is raised to 2.4.1's 2 units per step.
+double box2d_length_scale(const Scene& scene, double hz, double linear_slop);
 
 }  // namespace pge::peers::detail

@@ -27,6 +27,8 @@ using detail::field_acceleration;
 constexpr double kRates[] = {60, 240, 1000};
 constexpr int kBox2dDefault[2] = {8, 3}, kBox2dHigh[2] = {50, 20};
 constexpr int kChipmunkDefault = 10, kChipmunkHigh = 50;
+// Box2D v3 has no iteration counts but sub-steps per step: its default, 4, and a high one.
+constexpr int kBox2d3Default = 4, kBox2d3High = 16;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -309,6 +311,9 @@ Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std
 #ifdef PGE_HAVE_CHIPMUNK
   if (s.engine == "chipmunk") sim = detail::make_chipmunk(scene, s);
 #endif
+#ifdef PGE_HAVE_BOX2D3
+  if (s.engine == "box2d3") sim = detail::make_box2d3(scene, s);
+#endif
   if (!sim) throw std::logic_error("no adapter for engine \"" + s.engine + "\"");
   const std::size_t n = scene.bodies.size();
   std::vector<Vec2d> p(n);
@@ -375,6 +380,7 @@ Outcome run_peer(const Scene& scene, const Setting& s, double horizon, const std
 
 std::string iterations_label(const Setting& s) {
   if (s.engine == "box2d") return std::to_string(s.velocity_iterations) + "+" + std::to_string(s.position_iterations) + " iterations";
+  if (s.engine == "box2d3") return std::to_string(s.velocity_iterations) + " sub-steps";
   return std::to_string(s.velocity_iterations) + " iterations";
 }
 
@@ -398,6 +404,9 @@ std::vector<std::string> installed_peers() {
 #ifdef PGE_HAVE_CHIPMUNK
   out.emplace_back("chipmunk");
 #endif
+#ifdef PGE_HAVE_BOX2D3
+  out.emplace_back("box2d3");
+#endif
   return out;
 }
 
@@ -410,6 +419,7 @@ bool available(const std::string& engine) {
 std::string peer_package(const std::string& engine) {
   if (engine == "box2d") return "libbox2d-dev";
   if (engine == "chipmunk") return "libchipmunk-dev";
+  if (engine == "box2d3") return "a Box2D v3 build: scripts/build-box2d3.sh CHECKOUT";
   return "";
 }
 
@@ -432,6 +442,9 @@ std::vector<Setting> default_settings(const std::string& engine) {
   } else if (engine == "chipmunk") {
     for (double hz : kRates)
       for (int it : {kChipmunkDefault, kChipmunkHigh}) out.push_back(peer_setting(engine, hz, it, 0));
+  } else if (engine == "box2d3") {
+    for (double hz : kRates)
+      for (int it : {kBox2d3Default, kBox2d3High}) out.push_back(peer_setting(engine, hz, it, 0));
   }
   return out;
 }
@@ -511,6 +524,30 @@ PeerBody peer_body(const BodyDesc& d) {
   out.origin = d.position + rotated(d.angle, out.frame.pivot);
   for (Vec2d& v : out.points) v -= out.frame.pivot;
   return out;
+}
+
+double box2d_length_scale(const Scene& scene, double hz, double linear_slop) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double smallest = inf, fastest = 0, shortest_side = inf;
+  const double extent = scene_extent(scene);
+  for (const BodyDesc& b : scene.bodies) {
+    for (std::size_t k = 0; k < b.vertices.size(); ++k)
+      shortest_side = std::min(shortest_side, std::hypot(b.vertices[(k + 1) % b.vertices.size()].x - b.vertices[k].x,
+                                                         b.vertices[(k + 1) % b.vertices.size()].y - b.vertices[k].y));
+    if (b.fixed) continue;
+    smallest = std::min(smallest, b.shape == ShapeKind::Segment ? std::hypot(b.b.x - b.a.x, b.b.y - b.a.y) : body_size(b));
+    fastest = std::max(fastest, std::sqrt(dot(b.velocity, b.velocity) + 2 * std::hypot(field_acceleration(scene, b).x,
+                                                                                      field_acceleration(scene, b).y) * extent));
+  }
+  double scale = std::isfinite(smallest) && smallest > 0 ? 1 / smallest : 1.0;
+  if (fastest > 0) scale = std::min(scale, hz / fastest);  // at most 1 length unit per step
+  // But every polygon side at least the linear slop: Box2D welds closer vertices (and asserts on
+  // the degenerate hull). The shape wins over the speed: a faster body is then capped by
+  // Box2D's speed limit, which the measures show.
+  scale = std::exp2(std::floor(std::log2(scale)));
+  if (std::isfinite(shortest_side) && scale * shortest_side < linear_slop)
+    scale = std::exp2(std::ceil(std::log2(linear_slop / shortest_side)));
+  return scale;
 }
 }  // namespace detail
 

@@ -2,6 +2,8 @@
 // PGE, measured the same way (issue 11). The adapters are compiled only where the Debian packages
 // libbox2d-dev and libchipmunk-dev are installed (PGE_HAVE_BOX2D, PGE_HAVE_CHIPMUNK); without them
 // installed_peers() leaves them out and run_setting() returns an Outcome whose `error` says so.
+// A third, "box2d3" (Box2D v3, its C API), is compiled when the build is pointed at a Box2D v3
+// build (PGE_BOX2D3_INCLUDE_DIR and PGE_BOX2D3_LIBRARY; scripts/build-box2d3.sh sets both).
 //
 // How each peer is set up (the most favourable settings for accuracy; peers.cpp and the adapters
 // say why for each):
@@ -37,7 +39,7 @@
 namespace pge::peers {
 
 struct Setting {               // one way of running a scene
-  std::string engine;          // "box2d", "chipmunk", "pge"
+  std::string engine;          // "box2d", "chipmunk", "box2d3", "pge"
   std::string label;           // e.g. "box2d 240 Hz, 8+3 iterations" or "pge robust/double"
   double hz = 0;               // steps per simulated second (peers)
   int velocity_iterations = 0, position_iterations = 0;  // Box2D; Chipmunk uses velocity_iterations as its iterations
@@ -70,15 +72,17 @@ struct Outcome {
 // Whether run_setting records a peer's run as a step trace too.
 enum class Record : bool { Nothing, StepTrace };
 
-// Subset of {"box2d", "chipmunk"}: the peers this build was compiled with.
+// Subset of {"box2d", "chipmunk", "box2d3"}: the peers this build was compiled with.
 std::vector<std::string> installed_peers();
 // Whether `engine` ("box2d", "chipmunk", "pge") can run in this build.
 bool available(const std::string& engine);
-// The Debian package that provides a peer ("libbox2d-dev", "libchipmunk-dev").
+// The Debian package that provides a peer ("libbox2d-dev", "libchipmunk-dev"); for box2d3 (Box2D
+// v3, not packaged in Debian 12) the script that builds it from a checkout.
 std::string peer_package(const std::string& engine);
 
 // Box2D: 60, 240 and 1000 Hz x 8+3 (its default) and 50+20 iterations; Chipmunk: the same rates x
-// 10 (its default) and 50 iterations; pge: robust and certified, double. Empty for other names.
+// 10 (its default) and 50 iterations; Box2D v3: the same rates x 4 (its default) and 16 sub-steps
+// (velocity_iterations holds them); pge: robust and certified, double. Empty for other names.
 std::vector<Setting> default_settings(const std::string& engine);
 // A PGE setting: solver "fast" | "robust" | "certified", scalar "float" | "double" |
 // "long-double" | "quad"; labelled "pge SOLVER/SCALAR".
