@@ -176,6 +176,25 @@ TEST(OracleVerdict, ExactTimeAgreesAndLateTimeIsATimeError) {
   EXPECT_DOUBLE_EQ(bad.relative_error, 100 * std::ldexp(1.0, -52));
 }
 
+// An irrational contact time (the quartic's above, t = sqrt((6 - sqrt 3) / 4)) and an engine
+// time 3 doubles past its rounding: the ulps and the relative error, the latter against the
+// exact time bracketed to 2^-300 in rationals (|e - t| / t to far below a double's precision).
+TEST(OracleVerdict, RelativeErrorOfAnIrrationalTime) {
+  const ExactState s = state_of({fixed_circle(0.5, {0, 0}), moving_circle(0.5, {0.5, 3}, {0, 0}, 1, {0, -4})});
+  const NextEvent next = next_event(s);
+  ASSERT_TRUE(next.time);
+  double t = next.time->to_double();
+  for (int k = 0; k < 3; ++k) t = std::nextafter(t, 2.0);
+  const Judgement j = judge_one(s, event_at(s, 0, 1, t, ContactKind::CircleCircle));
+  ASSERT_TRUE(j.pair_time);
+  EXPECT_EQ(j.ulps, 3);
+  const auto [lo, hi] = j.pair_time->bracket(300);
+  const mpq_class exact = (lo + hi) / 2, e = Dyadic::from(t).to_mpq();
+  const double expected = mpq_class(abs(mpq_class((e - exact) / exact))).get_d();
+  EXPECT_GT(expected, 2 * std::ldexp(1.0, -53));
+  EXPECT_DOUBLE_EQ(j.relative_error, expected);
+}
+
 // Two pairs far apart: A (x = 0, speed 1) reaches B (x = 3, at rest) at t = 1; D (speed 1) reaches
 // E, at rest 3 + `extra` away, at t = 1 + extra. F sits far off and is touched by nobody.
 ExactState two_pairs(double extra) {
