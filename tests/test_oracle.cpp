@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 namespace pge::oracle {
 namespace {
@@ -49,6 +50,37 @@ TEST(OracleNumbers, ArithmeticIsExact) {
   EXPECT_EQ((a - b).to_mpq(), a.to_mpq() - b.to_mpq());
   EXPECT_LT(compare(a, b), 0);
   EXPECT_EQ(Dyadic(12), Dyadic(mpz_class(3), 2));  // canonical form: 12 = 3 * 2^2
+}
+
+// Dyadic::to_double rounds to nearest, ties to even; IEEE arithmetic rounds the exact sum and
+// product of two doubles the same way, so a + b and a * b are what the exact values must round
+// to: random doubles of every sign and binade (normal, subnormal and overflowing results), and
+// sums that are ties (a double plus half an ulp of it, or an odd multiple of a quarter ulp).
+TEST(OracleNumbers, ToDoubleRoundsToNearestEven) {
+  std::mt19937_64 rng(27);
+  std::uniform_real_distribution<double> mant(-1.0, 1.0);
+  std::uniform_int_distribution<int> expo(-1100, 1023);  // |a| < 2^1023: finite
+  int checked = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double a = std::ldexp(mant(rng), expo(rng)), b = std::ldexp(mant(rng), k % 4 == 0 ? expo(rng) : expo(rng) / 16);
+    const Dyadic x = Dyadic::from(a), y = Dyadic::from(b);
+    if (std::isfinite(a * b)) {
+      EXPECT_EQ((x * y).to_double(), a * b) << a << " * " << b;
+    }
+    if (std::isfinite(a + b)) {
+      EXPECT_EQ((x + y).to_double(), a + b) << a << " + " << b;
+    }
+    const double ulp = std::nextafter(std::abs(a), std::numeric_limits<double>::infinity()) - std::abs(a);
+    if (!(ulp >= 0x1p-1000) || !std::isfinite(ulp)) continue;
+    for (const double frac : {0.5, 0.25, 0.75}) {  // h = ulp * frac is exact: a tie, below and above it
+      const double h = ulp * frac;
+      if (std::isfinite(a + h)) {
+        EXPECT_EQ((x + Dyadic::from(h)).to_double(), a + h) << a << " + " << h;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 10000);
 }
 
 TEST(OracleNumbers, FormatOrdinalsAndRounding) {
