@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 namespace pge::oracle {
 namespace {
@@ -49,6 +50,37 @@ TEST(OracleNumbers, ArithmeticIsExact) {
   EXPECT_EQ((a - b).to_mpq(), a.to_mpq() - b.to_mpq());
   EXPECT_LT(compare(a, b), 0);
   EXPECT_EQ(Dyadic(12), Dyadic(mpz_class(3), 2));  // canonical form: 12 = 3 * 2^2
+}
+
+// Dyadic::to_double rounds to nearest, ties to even; IEEE arithmetic rounds the exact sum and
+// product of two doubles the same way, so a + b and a * b are what the exact values must round
+// to: random doubles of every sign and binade (normal, subnormal and overflowing results), and
+// sums that are ties (a double plus half an ulp of it, or an odd multiple of a quarter ulp).
+TEST(OracleNumbers, ToDoubleRoundsToNearestEven) {
+  std::mt19937_64 rng(27);
+  std::uniform_real_distribution<double> mant(-1.0, 1.0);
+  std::uniform_int_distribution<int> expo(-1100, 1023);  // |a| < 2^1023: finite
+  int checked = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double a = std::ldexp(mant(rng), expo(rng)), b = std::ldexp(mant(rng), k % 4 == 0 ? expo(rng) : expo(rng) / 16);
+    const Dyadic x = Dyadic::from(a), y = Dyadic::from(b);
+    if (std::isfinite(a * b)) {
+      EXPECT_EQ((x * y).to_double(), a * b) << a << " * " << b;
+    }
+    if (std::isfinite(a + b)) {
+      EXPECT_EQ((x + y).to_double(), a + b) << a << " + " << b;
+    }
+    const double ulp = std::nextafter(std::abs(a), std::numeric_limits<double>::infinity()) - std::abs(a);
+    if (!(ulp >= 0x1p-1000) || !std::isfinite(ulp)) continue;
+    for (const double frac : {0.5, 0.25, 0.75}) {  // h = ulp * frac is exact: a tie, below and above it
+      const double h = ulp * frac;
+      if (std::isfinite(a + h)) {
+        EXPECT_EQ((x + Dyadic::from(h)).to_double(), a + h) << a << " + " << h;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 10000);
 }
 
 TEST(OracleNumbers, FormatOrdinalsAndRounding) {
@@ -174,6 +206,25 @@ TEST(OracleVerdict, ExactTimeAgreesAndLateTimeIsATimeError) {
   EXPECT_EQ(bad.verdict, Verdict::TimeError);
   EXPECT_EQ(bad.ulps, 100);
   EXPECT_DOUBLE_EQ(bad.relative_error, 100 * std::ldexp(1.0, -52));
+}
+
+// An irrational contact time (the quartic's above, t = sqrt((6 - sqrt 3) / 4)) and an engine
+// time 3 doubles past its rounding: the ulps and the relative error, the latter against the
+// exact time bracketed to 2^-300 in rationals (|e - t| / t to far below a double's precision).
+TEST(OracleVerdict, RelativeErrorOfAnIrrationalTime) {
+  const ExactState s = state_of({fixed_circle(0.5, {0, 0}), moving_circle(0.5, {0.5, 3}, {0, 0}, 1, {0, -4})});
+  const NextEvent next = next_event(s);
+  ASSERT_TRUE(next.time);
+  double t = next.time->to_double();
+  for (int k = 0; k < 3; ++k) t = std::nextafter(t, 2.0);
+  const Judgement j = judge_one(s, event_at(s, 0, 1, t, ContactKind::CircleCircle));
+  ASSERT_TRUE(j.pair_time);
+  EXPECT_EQ(j.ulps, 3);
+  const auto [lo, hi] = j.pair_time->bracket(300);
+  const mpq_class exact = (lo + hi) / 2, e = Dyadic::from(t).to_mpq();
+  const double expected = mpq_class(abs(mpq_class((e - exact) / exact))).get_d();
+  EXPECT_GT(expected, 2 * std::ldexp(1.0, -53));
+  EXPECT_DOUBLE_EQ(j.relative_error, expected);
 }
 
 // Two pairs far apart: A (x = 0, speed 1) reaches B (x = 3, at rest) at t = 1; D (speed 1) reaches

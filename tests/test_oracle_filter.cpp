@@ -2,6 +2,7 @@
 // with every shape and on the events of real engine runs.
 #include "oracle_states.hpp"
 #include "pge/scene_io.hpp"
+#include "spatial_filter.hpp"
 #include "pge/world.hpp"
 
 #include <gtest/gtest.h>
@@ -174,6 +175,50 @@ TEST(OracleSpatialFilter, KeepsABodyAcceleratingFromRest) {
   ASSERT_EQ(c.pairs.size(), 1u);
   EXPECT_EQ(c.pairs[0].a, ball);
   EXPECT_EQ(c.pairs[0].b, ball + 1);
+}
+
+// The spatial filter unit by unit, against contact times from the mathematics. A pair bound of
+// two discs is the first root of a lower bound of their gap along the line of centres; the
+// filter keeps each body's path from `now` until the body moves (SpatialFilter::moved).
+bool has_pair(const std::vector<detail::BodyPair>& pairs, BodyIndex a, BodyIndex b) {
+  return std::find(pairs.begin(), pairs.end(), detail::BodyPair{a, b}) != pairs.end();
+}
+
+TEST(OracleSpatialFilter, DiscBoundsAreTheContactTimesOfTheMathematics) {
+  // b at rest accelerating at 1 towards a: the gap 2 closes as t^2 / 2, contact at t = 2.
+  // c closing on d at 4 m/s from a gap of 3: contact at t = 3 / 4.
+  std::vector<detail::BodyModel<detail::Interval>> m;
+  m.push_back(detail::interval_model(moving_circle(0.5, {0, 0}, {0, 0})));
+  m.push_back(detail::interval_model(moving_circle(0.5, {3, 0}, {0, 0}, 1, {-1, 0})));
+  m.push_back(detail::interval_model(moving_circle(0.5, {0, 50}, {2, 0})));
+  m.push_back(detail::interval_model(moving_circle(0.5, {4, 50}, {-2, 0})));
+  detail::SpatialFilter f(m, Dyadic());
+  EXPECT_TRUE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(2.0)), 0, 1));
+  EXPECT_FALSE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(1.75)), 0, 1));  // apart until 2
+  EXPECT_TRUE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(0.75)), 2, 3));
+  EXPECT_FALSE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(0.625)), 2, 3));
+}
+
+TEST(OracleSpatialFilter, ABodyThatMovedIsBoundOnItsNewPath) {
+  // a and b collide at t = 1/2 (gap 1 closing at 2) and swap velocities, in the referee's order:
+  // a's new motion first (its pairs are made while b is still on its old path, towards a), then
+  // b's. b then closes on c at 1 m/s from a gap of 3/2: contact at t = 2. A filter that kept b's
+  // old path (moving away from c) would vouch for b and c past 2.
+  std::vector<detail::BodyModel<detail::Interval>> m;
+  m.push_back(detail::interval_model(moving_circle(0.5, {0, 0}, {1, 0})));
+  m.push_back(detail::interval_model(moving_circle(0.5, {2, 0}, {-1, 0})));
+  m.push_back(detail::interval_model(moving_circle(0.5, {4, 0}, {0, 0})));
+  detail::SpatialFilter f(m, Dyadic());
+  EXPECT_TRUE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(0.5)), 0, 1));
+  const Dyadic half = Dyadic::from(0.5);
+  detail::set_motion(m[0], motion({0.5, 0}, {-1, 0}, {}, 0.5));
+  f.moved(0, half);
+  detail::set_motion(m[1], motion({1.5, 0}, {1, 0}, {}, 0.5));
+  f.moved(1, half);
+  const std::vector<detail::BodyPair> to_contact = f.pairs_within(half, Dyadic::from(1.5));
+  EXPECT_TRUE(has_pair(to_contact, 1, 2));
+  EXPECT_TRUE(has_pair(to_contact, 0, 1));  // touching at 1/2: no gap to vouch with
+  EXPECT_FALSE(has_pair(f.pairs_within(half, Dyadic::from(1.25)), 1, 2));  // apart until 2
 }
 
 // Every scene in fixtures/scenes and fixtures/regressions, judged event by event by three

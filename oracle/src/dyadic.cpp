@@ -101,6 +101,22 @@ int compare(const Dyadic& a, const Dyadic& b) {
 }
 
 double Dyadic::to_double() const {
+  // A mantissa of at most 53 bits on the grid of the subnormals and below the overflow is a
+  // double already (every double converted exactly is one): m, then the scaling, are exact.
+  const long bits = static_cast<long>(mpz_sizeinbase(m_.get_mpz_t(), 2));
+  if (bits <= 53 && e_ >= -1074 && bits - 1 + e_ <= 1023) return std::ldexp(m_.get_d(), static_cast<int>(e_));
+  if (bits > 53 && bits - 1 + e_ >= -1022 && bits - 1 + e_ <= 1022) {
+    // A normal double's 53 bits: |m| / 2^shift rounded to nearest, ties to even. m is odd, so
+    // below the half bit there is a set bit (the rest is above half) unless the half bit is
+    // bit 0 itself (exactly half: a tie).
+    const long shift = bits - 53;
+    mpz_class n;
+    mpz_tdiv_q_2exp(n.get_mpz_t(), m_.get_mpz_t(), static_cast<mp_bitcnt_t>(shift));  // |n| = floor(|m| / 2^shift)
+    // Bit shift - 1 of |m|: of m's two's complement for m > 0, its complement for m < 0 above bit 0.
+    const bool half = shift == 1 || (mpz_tstbit(m_.get_mpz_t(), static_cast<mp_bitcnt_t>(shift - 1)) != 0) == (sgn(m_) > 0);
+    if (half && (shift >= 2 || mpz_odd_p(n.get_mpz_t()))) n += sgn(m_);
+    return std::ldexp(n.get_d(), static_cast<int>(e_ + shift));  // |n| <= 2^53: exact, and so is the scaling
+  }
   const Dyadic r = round_to_format(*this, TimeFormat::of<double>());
   // r has at most 53 significant bits, so both conversions below are exact.
   return std::ldexp(r.m_.get_d(), static_cast<int>(std::clamp(r.e_, -2200L, 2200L)));

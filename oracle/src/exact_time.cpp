@@ -74,11 +74,22 @@ std::string ExactTime::decimal(int digits) const {
   for (int k = 0; k < digits; ++k) scale *= 10;
   // 10^d < 2^(3.33 d): this many bits more than separates consecutive multiples of 10^-d.
   const long bits = 4L * digits + 8;
-  const auto [lo, hi] = bracket(bits);
   mpz_class n_lo, n_hi;
-  const mpq_class lo_s = lo * scale, hi_s = hi * scale;
-  mpz_fdiv_q(n_lo.get_mpz_t(), lo_s.get_num_mpz_t(), lo_s.get_den_mpz_t());
-  mpz_fdiv_q(n_hi.get_mpz_t(), hi_s.get_num_mpz_t(), hi_s.get_den_mpz_t());
+  if (const auto b = detail::dyadic_bracket(*offset_, bits)) {
+    // The same bracket in dyadic numbers: floor(m 2^e 10^d) without rationals.
+    const auto scaled_floor = [&](mpz_class& n, const Dyadic& x) {
+      n = x.mantissa() * scale;
+      if (x.exponent() >= 0) mpz_mul_2exp(n.get_mpz_t(), n.get_mpz_t(), static_cast<mp_bitcnt_t>(x.exponent()));
+      else mpz_fdiv_q_2exp(n.get_mpz_t(), n.get_mpz_t(), static_cast<mp_bitcnt_t>(-x.exponent()));
+    };
+    scaled_floor(n_lo, b->first + base_);
+    scaled_floor(n_hi, b->second + base_);
+  } else {
+    const auto [lo, hi] = bracket(bits);
+    const mpq_class lo_s = lo * scale, hi_s = hi * scale;
+    mpz_fdiv_q(n_lo.get_mpz_t(), lo_s.get_num_mpz_t(), lo_s.get_den_mpz_t());
+    mpz_fdiv_q(n_hi.get_mpz_t(), hi_s.get_num_mpz_t(), hi_s.get_den_mpz_t());
+  }
   mpz_class n = n_lo;
   if (n_hi != n_lo) {
     // The bracket straddles k / 10^d (k = n_lo + 1): decide exactly which side the time is on.

@@ -120,4 +120,12 @@ template <class N> ContactPolys<N> contact_polys(const Feature& ft, Frame& frame
   return point_edge(p, a, edge_vector(eb, ft.edge), radius, ft.one_sided, ft.sigma);
 }
 
+// contact_polys<Dyadic>(ft, frame), kept in the frame for `ft` (a feature of a FeatureCache
+// list: its address names it for the frame's life).
+inline const ContactPolys<Dyadic>& exact_contact_polys(const Feature& ft, Frame& frame) {
+  std::shared_ptr<const void>& slot = frame.polys_slot(&ft);
+  if (!slot) slot = std::make_shared<const ContactPolys<Dyadic>>(contact_polys<Dyadic>(ft, frame));
+  return *static_cast<const ContactPolys<Dyadic>*>(slot.get());
+}
+
 }  // namespace pge::oracle::detail

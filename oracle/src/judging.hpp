@@ -15,9 +15,9 @@ double relative_error(const Dyadic& engine, const ExactTime& exact);
 
 // The verdict rule (see Verdict in oracle.hpp). `own`: the exact contact time of the engine's
 // pair; `earliest`: the exact first contact of any pair, up to at least max(own, engine time
-// + agree_ulps + 1 ulps).
-Verdict decide(const std::optional<ExactTime>& own, const NextEvent& earliest, const Dyadic& engine_time,
-               const TimeFormat& f, long agree_ulps);
+// + agree_ulps + 1 ulps); `own_ulps`: ulps_from(engine_time, *own, f) when already known.
+Verdict decide(const std::optional<ExactTime>& own, std::optional<long long> own_ulps, const NextEvent& earliest,
+               const Dyadic& engine_time, const TimeFormat& f, long agree_ulps);
 
 Conservation measure_conservation(const ExactBody& a, const ExactBody& b, const ExactEvent& e,
                                   const ExactMotion& a_after, const ExactMotion& b_after);

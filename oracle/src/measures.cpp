@@ -23,7 +23,9 @@ Dyadic cross(const ExactVec& a, const ExactVec& b) { return a.x * b.y - a.y * b.
 // -m field.p, at time t on the given motion (a resting body's path has another acceleration
 // than its field).
 Dyadic energy(const Dyadic& mass, const ExactVec& v, const ExactVec& field, const ExactMotion& m, const Dyadic& t) {
-  return mass * (dot(v, v).scaled(-1) - dot(field, position_at(m, t)));
+  const Dyadic kinetic = dot(v, v).scaled(-1);
+  if (field.x.is_zero() && field.y.is_zero()) return mass * kinetic;  // no potential: exactly the same sum
+  return mass * (kinetic - dot(field, position_at(m, t)));
 }
 
 double length(const ExactVec& v) { return std::sqrt(dot(v, v).to_double()); }
@@ -88,7 +90,7 @@ GapMeasure measure_gap(Frame& fr, FeatureCache& features, BodyIndex a, BodyIndex
   if (rotating_pair(fr, a, b)) return rotating_gap(fr, a, b, id, tau);
   for (const Feature& ft : features.of(fr, a, b)) {
     if (!(ft.id == id)) continue;
-    const ContactPolys<Dyadic> c = contact_polys<Dyadic>(ft, fr);
+    const ContactPolys<Dyadic>& c = exact_contact_polys(ft, fr);
     const BodyModel<Dyadic>& pb = fr.exact_body(ft.point.body);
     const Dyadic f = evaluate(c.f, tau);
     if (!ft.to_edge) {

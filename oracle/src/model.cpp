@@ -21,7 +21,8 @@ template <class N, class Convert> BodyModel<N> model_of(const ExactBody& b, Conv
 Interval Interval::enclose(const Dyadic& x) {
   const double d = x.to_double();  // the nearest double: within half an ulp of x
   if (!std::isfinite(d)) return whole();
-  if (Dyadic::from(d) == x) return Interval(d);
+  // An odd mantissa of more than 53 bits is no double: only a shorter one can be d exactly.
+  if (mpz_sizeinbase(x.mantissa().get_mpz_t(), 2) <= 53 && Dyadic::from(d) == x) return Interval(d);
   return {next_down(d), next_up(d)};
 }
 

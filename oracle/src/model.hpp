@@ -106,6 +106,9 @@ class Frame {
   std::shared_ptr<const void>& rotating_slot(BodyIndex i) { return rotating_[i]; }
   // The same for the rotating pair filter's swept outline of body i over one window.
   std::shared_ptr<const void>& sweep_slot(BodyIndex i) { return sweeps_[i]; }
+  // The exact contact functions of one feature pair (features.hpp's exact_contact_polys), made
+  // once per frame: the gap measure and the engine pair's search both need them.
+  std::shared_ptr<const void>& polys_slot(const void* feature) { return polys_[feature]; }
 
  private:
   const std::vector<BodyModel<Dyadic>>& exact_;
@@ -118,6 +121,7 @@ class Frame {
   std::unordered_map<BodyIndex, PointPath<Interval>> interval_paths_;
   std::unordered_map<BodyIndex, std::shared_ptr<const void>> rotating_;
   std::unordered_map<BodyIndex, std::shared_ptr<const void>> sweeps_;
+  std::unordered_map<const void*, std::shared_ptr<const void>> polys_;
 };
 
 template <> inline const BodyModel<Dyadic>& Frame::body<Dyadic>(BodyIndex i) const { return exact_[i]; }

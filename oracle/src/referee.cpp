@@ -1,5 +1,6 @@
 #include "judging.hpp"
 #include "pge/oracle.hpp"
+#include "roots.hpp"
 #include "rotating.hpp"
 #include "search.hpp"
 
@@ -43,6 +44,18 @@ NextEvent earliest_of(const Dyadic& now, const std::vector<Found>& found) {
 // exact time (an upper bound of it). A wider window only costs candidate pairs, never
 // correctness; 2^-64 s is below one ulp of every time from 2^-11 s on. Bits below the point.
 constexpr long kWindowBits = 64;
+
+// grid_ceil(t.bracket(kWindowBits).second, kWindowBits), from the dyadic bracket when the time
+// keeps one (no rationals): the same narrowing and the same upper end, rounded up the same way.
+Dyadic window_ceil(const ExactTime& t) {
+  const auto b = dyadic_bracket(*t.offset(), kWindowBits);
+  if (!b) return grid_ceil(t.bracket(kWindowBits).second, kWindowBits);
+  const Dyadic hi = b->second + t.base();
+  if (hi.exponent() >= -kWindowBits) return hi;
+  mpz_class n;
+  mpz_cdiv_q_2exp(n.get_mpz_t(), hi.mantissa().get_mpz_t(), static_cast<mp_bitcnt_t>(-kWindowBits - hi.exponent()));
+  return Dyadic(n, -kWindowBits);
+}
 
 }  // namespace
 
@@ -112,7 +125,7 @@ struct Referee::Impl {
   // whichever is later (never past the horizon).
   Dyadic window_end(const ExactEvent& e, const std::optional<ExactTime>& own) const {
     Dyadic t_hi = format_step(round_to_format(e.time, state.format), options.agree_ulps + 1, state.format);
-    if (own) t_hi = std::max(t_hi, grid_ceil(own->bracket(kWindowBits).second, kWindowBits));
+    if (own) t_hi = std::max(t_hi, window_ceil(*own));
     const Dyadic tau = std::min(t_hi, state.horizon) - state.now;
     return tau.sign() < 0 ? Dyadic() : tau;
   }
@@ -182,7 +195,8 @@ Judgement Referee::judge(const ExactEvent& e, const ExactMotion& a_after, const 
     const NextEvent earliest = m.search(fr, tau_hi, {e.a, e.b}, std::move(found));
     j.earliest_time = earliest.time;
     j.earliest = earliest.pairs;
-    j.verdict = decide(j.pair_time, earliest, e.time, s.format, m.options.agree_ulps);
+    j.verdict = decide(j.pair_time, own ? std::optional<long long>(j.ulps) : std::nullopt, earliest, e.time, s.format,
+                       m.options.agree_ulps);
     // An event at an exact graze of a rotating pair (a tangency: the normal speed is exactly
     // zero there, so an engine's approach test and impulse are rounding, zero or an eps): not a
     // contact to agree with, nor a phantom of a pair far apart. Undecided, with the reason.

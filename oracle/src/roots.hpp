@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -56,6 +57,9 @@ int compare(const RealRoot& a, const mpq_class& x);
 RootHandle root_at(const Dyadic& x);  // x itself, as an algebraic real
 // Rationals lo <= r <= hi with hi - lo <= 2^-bits (refines r in place).
 std::pair<mpq_class, mpq_class> bracket(const RealRoot& r, long bits);
+// bracket(r, bits) as dyadic numbers, when r keeps an enclosure of its own (every root but one
+// only CGAL holds): the same narrowing, the same ends, without rationals.
+std::optional<std::pair<Dyadic, Dyadic>> dyadic_bracket(const RealRoot& r, long bits);
 // A hint, never a change of value: narrows r's enclosure to about 2^-bits of |x - r| by one
 // Newton step from x, a point near r (see RootEnclosure::newton_from).
 void refine_near(const RealRoot& r, const Dyadic& x, long bits);

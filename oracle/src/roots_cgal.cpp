@@ -206,6 +206,18 @@ std::pair<mpq_class, mpq_class> bracket(const RealRoot& r, long bits) {
   return {to_mpq(lo), to_mpq(hi)};
 }
 
+std::optional<std::pair<Dyadic, Dyadic>> dyadic_bracket(const RealRoot& r, long bits) {
+  if (const TranscendentalRoot* t = r.transcendental()) {
+    t->narrow(bits);
+    return std::pair{t->lo(), t->hi()};
+  }
+  if (RootEnclosure* e = r.enclosure()) {
+    e->narrow(bits);
+    return std::pair{e->lo(), e->hi()};
+  }
+  return std::nullopt;
+}
+
 void refine_near(const RealRoot& r, const Dyadic& x, long bits) {
   if (r.transcendental()) return;  // a hint only: its own narrowing is Newton's already
   if (RootEnclosure* e = r.enclosure()) e->newton_from(x, bits);

@@ -28,7 +28,7 @@ std::optional<PairResult> pair_contact(Frame& fr, FeatureCache& features, BodyIn
     const bool vertex_edge = ft.to_edge && ft.point.vertex >= 0;
     const auto overlap_ok = [&] { return !vertex_edge || overlap_rule_applies(fr, ft); };
     const auto corner_ok = [&](const RealRoot& r, int end) { return corner_enters(fr, features, ft, end, r); };
-    const std::optional<Contact> c = earliest_contact(contact_polys<Dyadic>(ft, fr), tau_hi, overlap_ok, corner_ok);
+    const std::optional<Contact> c = earliest_contact(exact_contact_polys(ft, fr), tau_hi, overlap_ok, corner_ok);
     if (!c) continue;
     const int order = best ? compare(*c->tau, *best->tau) : -1;
     if (order < 0) {

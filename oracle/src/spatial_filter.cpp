@@ -28,7 +28,7 @@ BodyPair pair_of(std::uint64_t key) {
 // path (moving bodies and fixed circles), or a fixed convex outline.
 struct Hull {
   bool outline = false;
-  PointPath<Interval> centre;
+  const PointPath<Interval>* centre = nullptr;
   Interval reach;                               // the disc's radius, an upper bound
   const std::vector<V2<Interval>>* vertices = nullptr;  // the outline's world vertices
 };
@@ -44,17 +44,15 @@ Poly<Interval> support(const Hull& h, double nx, double ny) {
     }
     return Poly<Interval>::constant(Interval(lo, hi));
   }
-  Poly<Interval> p = h.centre.x * Interval(nx) + h.centre.y * Interval(ny);
+  Poly<Interval> p = h.centre->x * Interval(nx) + h.centre->y * Interval(ny);
   p.c[0] = p.c[0] + h.reach * Interval(norm_up(nx, ny));
   return p;
 }
 
-// How long (tau from now, a lower bound) b stays strictly on the +n side of a: the gap
-// g(tau) = min_b n.x - max_a n.x satisfies g >= G - beta tau - alpha tau^2 (tau >= 0), positive
-// before its first root 2G / (beta + sqrt(beta^2 + 4 alpha G)), rounded towards zero here.
-double separated_for(const Hull& a, const Hull& b, double nx, double ny) {
-  if (nx == 0 && ny == 0) return 0;
-  const Poly<Interval> g = -support(b, -nx, -ny) - support(a, nx, ny);
+// A gap g(tau) (an enclosure of it for each tau >= 0, degree <= 2) stays positive at least as
+// long as this (tau, a lower bound): g >= G - beta tau - alpha tau^2, positive before its first
+// root 2G / (beta + sqrt(beta^2 + 4 alpha G)), rounded towards zero here.
+double positive_for(const Poly<Interval>& g) {
   const double G = g.c[0].lo();
   if (!(G > 0)) return 0;
   const double beta = std::max(g.deg >= 1 ? -g.c[1].lo() : 0.0, 0.0);
@@ -68,10 +66,31 @@ double separated_for(const Hull& a, const Hull& b, double nx, double ny) {
   return std::min(2 * q, std::numeric_limits<double>::max());  // doubling is exact (or saturates)
 }
 
+// How long (tau from now, a lower bound) b stays strictly on the +n side of a: the gap
+// g(tau) = min_b n.x - max_a n.x.
+double separated_for(const Hull& a, const Hull& b, double nx, double ny) {
+  if (nx == 0 && ny == 0) return 0;
+  return positive_for(-support(b, -nx, -ny) - support(a, nx, ny));
+}
+
+// The same for two discs, along n: g(tau) = n.(cb(tau) - ca(tau)) - (ra + rb) |n|, with the
+// centres' difference taken first (half the products of two supports; the same enclosure's
+// meaning, an interval bound of the same gap).
+double discs_separated_for(const Hull& a, const Hull& b, double nx, double ny) {
+  if (nx == 0 && ny == 0) return 0;
+  Poly<Interval> g;
+  g.deg = std::max({a.centre->x.deg, a.centre->y.deg, b.centre->x.deg, b.centre->y.deg});
+  const Interval n_x(nx), n_y(ny);
+  for (int k = 0; k <= g.deg; ++k)
+    g.c[k] = (b.centre->x.c[k] - a.centre->x.c[k]) * n_x + (b.centre->y.c[k] - a.centre->y.c[k]) * n_y;
+  g.c[0] = g.c[0] - (a.reach + b.reach) * Interval(norm_up(nx, ny));
+  return positive_for(g);
+}
+
 }  // namespace
 
 SpatialFilter::SpatialFilter(const std::vector<BodyModel<Interval>>& bodies, const Dyadic& now)
-    : bodies_(bodies), reach_(bodies.size(), 0.0), entries_(bodies.size()) {
+    : bodies_(bodies), reach_(bodies.size(), 0.0), paths_(bodies.size()), entries_(bodies.size()) {
   std::vector<double> moving;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const BodyModel<Interval>& b = bodies[i];
@@ -94,6 +113,7 @@ SpatialFilter::SpatialFilter(const std::vector<BodyModel<Interval>>& bodies, con
 }
 
 void SpatialFilter::moved(BodyIndex i, const Dyadic& now) {
+  paths_[i].valid = false;
   drop_entry(i);
   make_entry(i, enclose_time(now), -kInf);
 }
@@ -148,6 +168,17 @@ double SpatialFilter::box_span(BodyIndex i) const {
   return span;
 }
 
+const PointPath<Interval>& SpatialFilter::path_at(BodyIndex i, const Interval& now) const {
+  CachedPath& c = paths_[i];
+  if (!c.valid || c.now_lo != now.lo() || c.now_hi != now.hi()) {
+    c.path = reference_path(bodies_[i], now);
+    c.now_lo = now.lo();
+    c.now_hi = now.hi();
+    c.valid = true;
+  }
+  return c.path;
+}
+
 std::int64_t SpatialFilter::cell_of(double x) const { return static_cast<std::int64_t>(std::floor(x / cell_)); }
 
 void SpatialFilter::make_entry(BodyIndex i, const Interval& now, double until) {
@@ -170,7 +201,7 @@ void SpatialFilter::make_entry(BodyIndex i, const Interval& now, double until) {
     e.until = std::max((now + Interval(box_span(i))).lo(), until);
     // tau in [0, until - now]: the box holds the shape over [now, until].
     const Interval tau(0.0, (Interval(e.until) - now).hi());
-    const PointPath<Interval> ref = reference_path(b, now);
+    const PointPath<Interval>& ref = path_at(i, now);
     x = evaluate(ref.x, tau) + Interval(-reach_[i], reach_[i]);
     y = evaluate(ref.y, tau) + Interval(-reach_[i], reach_[i]);
     expiry_.push({e.until, {e.version, i}});
@@ -259,7 +290,7 @@ double SpatialFilter::pair_bound(BodyIndex i, BodyIndex j, const Interval& now) 
       h.outline = true;
       h.vertices = &b.world;
     } else {
-      h.centre = reference_path(b, now);
+      h.centre = &path_at(k, now);
       h.reach = Interval(reach_[k]);
     }
     return h;
@@ -268,7 +299,7 @@ double SpatialFilter::pair_bound(BodyIndex i, BodyIndex j, const Interval& now) 
   double tau = 0;
   if (!a.outline && !b.outline) {
     // Two discs: the axis through their centres now.
-    tau = separated_for(a, b, mid(b.centre.x.c[0] - a.centre.x.c[0]), mid(b.centre.y.c[0] - a.centre.y.c[0]));
+    tau = discs_separated_for(a, b, mid(b.centre->x.c[0] - a.centre->x.c[0]), mid(b.centre->y.c[0] - a.centre->y.c[0]));
   } else {
     // A disc and a fixed outline: the outline's edge normals and the coordinate axes, both ways.
     const std::vector<V2<Interval>>& v = a.outline ? *a.vertices : *b.vertices;

@@ -95,10 +95,19 @@ class SpatialFilter {
   void drop_pair(BodyIndex i, BodyIndex j);
   double pair_bound(BodyIndex i, BodyIndex j, const Interval& now) const;
   double box_span(BodyIndex i) const;
+  // Body i's reference path from `now` (reference_path over the interval model), kept per body
+  // until its motion or `now` changes: a body is paired with several partners at one time.
+  const PointPath<Interval>& path_at(BodyIndex i, const Interval& now) const;
   std::int64_t cell_of(double x) const;
 
   const std::vector<BodyModel<Interval>>& bodies_;
   std::vector<double> reach_;  // bounding radius about the reference point (upper bound)
+  struct CachedPath {
+    bool valid = false;
+    double now_lo = 0, now_hi = 0;
+    PointPath<Interval> path;
+  };
+  mutable std::vector<CachedPath> paths_;  // path_at's, invalidated by moved()
   double cell_ = 1;
   std::vector<Entry> entries_;
   std::unordered_map<std::uint64_t, std::vector<BodyIndex>> grid_;

@@ -14,6 +14,16 @@ Dyadic representable(const Dyadic& t, const TimeFormat& f) { return round_to_for
 
 long long abs_ll(long long v) { return v < 0 ? -v : v; }
 
+// |n / d| (d != 0) as mpq_class's get_d gives it (rounded towards zero).
+double quotient_magnitude(const Dyadic& n, const Dyadic& d) {
+  mpq_class q(::abs(n.mantissa()), ::abs(d.mantissa()));
+  q.canonicalize();
+  const long shift = n.exponent() - d.exponent();
+  if (shift >= 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(shift));
+  else mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-shift));
+  return q.get_d();
+}
+
 // The exact time rounded to format f (ties to even), tried first in the rounding cell of `guess`
 // (the engine's time, right nearly always): two exact comparisons with the cell's ends, strictly
 // inside, instead of refining the time to the format's precision; round_to decides otherwise.
@@ -44,8 +54,21 @@ double relative_error(const Dyadic& engine, const ExactTime& exact) {
   // The engine's time is near the exact one: one Newton step from it usually brackets the
   // exact time that finely at once (a hint; the loop below checks).
   refine_near(*exact.offset(), engine - exact.base(), kSlackBits + 8);
-  const mpq_class e = engine.to_mpq();
+  std::optional<mpq_class> e_q;
   for (long bits = 80;; bits += kSlackBits) {
+    if (const auto b = dyadic_bracket(*exact.offset(), bits)) {
+      // The same test and quotient as below, in dyadic numbers: exact, so the same answer.
+      const Dyadic lo = b->first + exact.base(), hi = b->second + exact.base();
+      const Dyadic gap = engine < lo ? lo - engine : (engine > hi ? engine - hi : Dyadic());
+      if (gap.sign() > 0 && (hi - lo).scaled(kSlackBits) <= gap) {
+        const Dyadic mid = (lo + hi).scaled(-1);
+        if (mid.is_zero()) return std::numeric_limits<double>::infinity();
+        return quotient_magnitude(engine - mid, mid);
+      }
+      continue;
+    }
+    if (!e_q) e_q = engine.to_mpq();
+    const mpq_class& e = *e_q;
     const auto [lo, hi] = exact.bracket(bits);
     const mpq_class gap = e < lo ? mpq_class(lo - e) : (e > hi ? mpq_class(e - hi) : mpq_class(0));
     mpz_class scale = 1;
@@ -58,15 +81,16 @@ double relative_error(const Dyadic& engine, const ExactTime& exact) {
   }
 }
 
-Verdict decide(const std::optional<ExactTime>& own, const NextEvent& earliest, const Dyadic& engine_time,
-               const TimeFormat& f, long agree_ulps) {
+Verdict decide(const std::optional<ExactTime>& own, std::optional<long long> own_ulps, const NextEvent& earliest,
+               const Dyadic& engine_time, const TimeFormat& f, long agree_ulps) {
   const auto within = [&](const ExactTime& t) { return abs_ll(ulps_from(engine_time, t, f)) <= agree_ulps; };
+  const auto own_within = [&] { return own_ulps ? abs_ll(*own_ulps) <= agree_ulps : within(*own); };
   if (own && earliest.time && own->compare(*earliest.time) == 0) {
-    if (!within(*own)) return Verdict::TimeError;
+    if (!own_within()) return Verdict::TimeError;
     return earliest.pairs.size() > 1 ? Verdict::Tie : Verdict::Agree;
   }
   if (earliest.time && earliest.time->compare(engine_time) < 0 && !within(*earliest.time)) return Verdict::Miss;
-  if (own && within(*own)) return Verdict::Misorder;
+  if (own && own_within()) return Verdict::Misorder;
   return Verdict::Phantom;
 }
 
