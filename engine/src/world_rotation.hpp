@@ -118,10 +118,10 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   // A pair whose bounding circles cannot meet before `wanted` (one search of a polynomial over
   // all of it) has no contact to predict there: without this a fast pair moving apart was
   // predicted again every span / speed, an ulp of the clock per resume entry at 1e16 m/s
-  // (fixtures/known-failures/rotation/box-at-1e16-mps-runs-for-minutes.json). (Measuring the
-  // window from where they meet instead of from `from` cut the predictions on the spinning gas
-  // from 25.4 to 17.2 per event but made it slower, 960-980 events/s against 1,185: longer
-  // windows cost the feature searches more than the resume entries they save.)
+  // (fixtures/regressions/rotation/box-at-1e16-mps-moving-apart-reaches-its-horizon.json).
+  // (Measuring the window from where they meet instead of from `from` cut the predictions on the
+  // spinning gas from 25.4 to 17.2 per event but made it slower, 960-980 events/s against 1,185:
+  // longer windows cost the feature searches more than the resume entries they save.)
   if (const auto meet = detail::bounding_circles_meet(sa, sb, from, wanted, detail::RotatingOptions{}.max_boxes);
       meet && meet->status == RootStatus::None) {
     clear = wanted;
