@@ -83,6 +83,8 @@ ReportProgress::ReportProgress(ProgressStyle style, const std::vector<Planned>& 
   // clock going every second, and a log's line coming every 30 s, whatever the rows do.
   ticker_ = std::thread([this] {
     std::unique_lock<std::mutex> lock(mutex_);
+    started_ = true;
+    cv_.notify_all();
     const auto every = style_ == ProgressStyle::Terminal ? std::chrono::seconds(1) : std::chrono::seconds(30);
     while (!stop_) {
       const auto due = style_ == ProgressStyle::Terminal ? Clock::now() + every : last_line_ + every;
@@ -96,6 +98,8 @@ ReportProgress::ReportProgress(ProgressStyle style, const std::vector<Planned>& 
       }
     }
   });
+  std::unique_lock<std::mutex> lock(mutex_);
+  cv_.wait(lock, [this] { return started_; });
 }
 
 ReportProgress::~ReportProgress() { finish(); }

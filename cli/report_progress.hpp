@@ -94,6 +94,10 @@ class ReportProgress {
   std::mutex mutex_;
   std::condition_variable cv_;
   bool stop_ = false;
+  // Set by the ticker once it runs (holding mutex_): the constructor waits for it, so that no
+  // thread is being started when `hold` forks a worker (a thread's start takes allocator locks
+  // that a forked child would find held: AddressSanitizer's allocator is not fork-safe).
+  bool started_ = false;
   std::thread ticker_;
 };
 
