@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -175,6 +178,55 @@ TEST(OracleSpatialFilter, KeepsABodyAcceleratingFromRest) {
   ASSERT_EQ(c.pairs.size(), 1u);
   EXPECT_EQ(c.pairs[0].a, ball);
   EXPECT_EQ(c.pairs[0].b, ball + 1);
+}
+
+// The interval product picks its two ends from the factors' signs. Against the definition: the
+// exact products of the four corner pairs (Dyadic, no rounding) all lie in the result, and where
+// no product underflows the result is the four rounded products' hull moved one double outward,
+// no wider. Factors: points, zeros of both signs, one-signed and straddling intervals, infinite
+// ends, values near underflow and overflow.
+TEST(OracleInterval, ProductEnclosesTheFourExactCornerProductsAndNoMore) {
+  std::mt19937_64 rng(2026);
+  const double special[] = {0.0, -0.0, 1.0, -1.0, 0x1p-1074, -0x1p-600, 0x1p600, 1e308, -1e308,
+                            std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  const auto value = [&] {
+    if (rng() % 4 == 0) return special[rng() % std::size(special)];
+    const double m = std::uniform_real_distribution<double>(-4, 4)(rng);
+    return std::ldexp(m, static_cast<int>(rng() % 41) - 20);
+  };
+  const auto interval = [&] {
+    const double x = value(), y = rng() % 3 == 0 ? x : value();
+    return detail::Interval(std::min(x, y), std::max(x, y));
+  };
+  int checked = 0;
+  for (int n = 0; n < 200000; ++n) {
+    const detail::Interval a = interval(), b = interval();
+    const detail::Interval p = a * b;
+    const double xs[4] = {a.lo(), a.lo(), a.hi(), a.hi()}, ys[4] = {b.lo(), b.hi(), b.lo(), b.hi()};
+    bool finite = true, underflow = false;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int k = 0; k < 4; ++k) {
+      if (!std::isfinite(xs[k]) || !std::isfinite(ys[k])) {
+        finite = false;
+        continue;
+      }
+      const double r = xs[k] * ys[k];
+      underflow = underflow || (xs[k] != 0 && ys[k] != 0 && std::abs(r) < 0x1p-1000);
+      lo = std::min(lo, r);
+      hi = std::max(hi, r);
+      const Dyadic exact = Dyadic::from(xs[k]) * Dyadic::from(ys[k]);
+      if (std::isfinite(p.lo())) ASSERT_LE(Dyadic::from(p.lo()), exact) << a.lo() << " " << a.hi() << " x " << b.lo() << " " << b.hi();
+      else ASSERT_EQ(p.lo(), -std::numeric_limits<double>::infinity());
+      if (std::isfinite(p.hi())) ASSERT_GE(Dyadic::from(p.hi()), exact) << a.lo() << " " << a.hi() << " x " << b.lo() << " " << b.hi();
+      else ASSERT_EQ(p.hi(), std::numeric_limits<double>::infinity());
+    }
+    if (!finite || underflow) continue;
+    // No wider than the four rounded products' hull, one double outward (or exact at 0).
+    EXPECT_EQ(p.lo(), lo == 0 ? 0.0 : std::nextafter(lo, -std::numeric_limits<double>::infinity()));
+    EXPECT_EQ(p.hi(), hi == 0 ? 0.0 : std::nextafter(hi, std::numeric_limits<double>::infinity()));
+    ++checked;
+  }
+  EXPECT_GT(checked, 100000);
 }
 
 // The spatial filter unit by unit, against contact times from the mathematics. A pair bound of

@@ -76,7 +76,31 @@ class Interval {
     return {sum_lo(a.lo_ - b.hi_), sum_hi(a.hi_ - b.lo_)};
   }
   Interval operator-() const { return {-hi_, -lo_}; }
+  // The product's bounds come from the factors' signs: two products when either factor keeps
+  // one sign (the common case: a point, a reach, a time span), the four only when both straddle
+  // zero. The chosen ends are the smallest and largest exact products, and rounding is monotone,
+  // so the result encloses what the four products would (at an exact zero beside an underflow
+  // it is the tighter of the two, both enclosing the exact product).
   friend Interval operator*(const Interval& a, const Interval& b) {
+    const auto bounds = [](double x0, double y0, double x1, double y1) {
+      const double r0 = x0 * y0, r1 = x1 * y1;
+      if (std::isnan(r0) || std::isnan(r1)) return whole();
+      return Interval(product_lo(x0, y0, r0), product_hi(x1, y1, r1));
+    };
+    const int sa = a.lo_ >= 0 ? 1 : a.hi_ <= 0 ? -1 : 0;
+    const int sb = b.lo_ >= 0 ? 1 : b.hi_ <= 0 ? -1 : 0;
+    if (sa > 0) {
+      if (sb > 0) return bounds(a.lo_, b.lo_, a.hi_, b.hi_);
+      if (sb < 0) return bounds(a.hi_, b.lo_, a.lo_, b.hi_);
+      return bounds(a.hi_, b.lo_, a.hi_, b.hi_);
+    }
+    if (sa < 0) {
+      if (sb > 0) return bounds(a.lo_, b.hi_, a.hi_, b.lo_);
+      if (sb < 0) return bounds(a.hi_, b.hi_, a.lo_, b.lo_);
+      return bounds(a.lo_, b.hi_, a.lo_, b.lo_);
+    }
+    if (sb > 0) return bounds(a.lo_, b.hi_, a.hi_, b.hi_);
+    if (sb < 0) return bounds(a.hi_, b.lo_, a.lo_, b.lo_);
     const double x[4] = {a.lo_, a.lo_, a.hi_, a.hi_}, y[4] = {b.lo_, b.hi_, b.lo_, b.hi_};
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (int k = 0; k < 4; ++k) {

@@ -60,6 +60,8 @@ template <class N> V2<N> edge_vector(const BodyModel<N>& b, int k) {
 }
 
 inline Dyadic halve(const Dyadic& x) { return x.scaled(-1); }
+inline bool is_exact_zero(const Dyadic& x) { return x.is_zero(); }
+inline bool is_exact_zero(const Interval& x) { return x.lo() == 0 && x.hi() == 0; }
 inline Interval halve(const Interval& x) { return x * Interval(0.5); }
 
 // The reference point's path: p(now + tau) = p0 + v0 (d + tau) + acc (d + tau)^2 / 2 with
@@ -69,6 +71,14 @@ template <class N> PointPath<N> reference_path(const BodyModel<N>& b, const N& n
   const N d = now - b.t0;
   PointPath<N> p;
   p.x.deg = p.y.deg = 2;
+  if (is_exact_zero(b.acc.x) && is_exact_zero(b.acc.y)) {
+    // No acceleration (a gas, a ball on a table): the same path without the terms that are 0.
+    p.x.c[0] = b.p0.x + b.v0.x * d;
+    p.y.c[0] = b.p0.y + b.v0.y * d;
+    p.x.c[1] = b.v0.x;
+    p.y.c[1] = b.v0.y;
+    return p;  // c[2] = 0
+  }
   const N h = halve(N(1));
   p.x.c[0] = b.p0.x + b.v0.x * d + b.acc.x * (d * d) * h;
   p.y.c[0] = b.p0.y + b.v0.y * d + b.acc.y * (d * d) * h;

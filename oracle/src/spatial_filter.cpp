@@ -210,7 +210,8 @@ void SpatialFilter::make_entry(BodyIndex i, const Interval& now, double until) {
   const double limit = kMaxFilterCellIndex * cell_;
   const bool bounded = std::abs(e.box.x0) < limit && std::abs(e.box.x1) < limit && std::abs(e.box.y0) < limit &&
                        std::abs(e.box.y1) < limit;
-  std::vector<BodyIndex> near;
+  std::vector<BodyIndex>& near = near_;  // scratch, kept between calls
+  near.clear();
   e.cells.clear();
   e.wide = !bounded;
   if (bounded) {

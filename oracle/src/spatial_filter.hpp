@@ -112,6 +112,7 @@ class SpatialFilter {
   std::vector<Entry> entries_;
   std::unordered_map<std::uint64_t, std::vector<BodyIndex>> grid_;
   std::vector<BodyIndex> wide_;
+  std::vector<BodyIndex> near_;  // make_entry's candidates (scratch)
   std::unordered_map<std::uint64_t, PairBound> bounds_;
   std::vector<Timed> by_time_;  // a min-heap (std::push_heap with std::greater)
   std::uint64_t next_stamp_ = 0;
