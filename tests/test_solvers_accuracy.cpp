@@ -297,6 +297,94 @@ TYPED_TEST(SolverAccuracy, RandomCollisionPolynomials) {
   expect_sound<T>("random");
 }
 
+// Certified's quick path (roots_certified.hpp, quick_earliest_root) decides the common case from
+// robust's candidate and cheap proofs. Whatever it decides must be the referee's answer: no root,
+// or the earliest downward root correctly rounded (never the overlap rule: it proves p(lo) > 0).
+// It must also decide most random cases, or certified pays for its walk after all.
+TYPED_TEST(SolverAccuracy, QuickPathAgreesWithReferee) {
+  using T = TypeParam;
+  std::size_t decided = 0, random_seen = 0;
+  for (const auto* set : {&random_set(), &hard_cases()}) {
+    const std::size_t n = std::min<std::size_t>(set->size(), 10000);
+    for (std::size_t i = 0; i < n; ++i) {
+      const cases::Case& c = (*set)[i];
+      if (!representable<T>(c)) continue;
+      Poly<T> p = cases::convert<T>(c.p);
+      p.degree = detail::trimmed_degree(p);
+      if (p.degree == 0) continue;
+      T t{};
+      const detail::Quick q = detail::quick_earliest_root(p, T(c.lo), T(c.hi), t);
+      random_seen += set == &random_set();
+      if (q == detail::Quick::Undecided) continue;
+      decided += set == &random_set();
+      const Found<T> exact = reference_roots<T>(c).downward;
+      if (q == detail::Quick::None) {
+        EXPECT_TRUE(exact.t.empty()) << describe(c, i) << ": quick path says no root";
+      } else {
+        ASSERT_FALSE(exact.t.empty()) << describe(c, i) << ": quick path invents " << t;
+        EXPECT_EQ(t, exact.t[0]) << describe(c, i);
+        EXPECT_FALSE(exact.overlap[0]) << describe(c, i);
+      }
+    }
+  }
+  EXPECT_GT(decided, random_seen * 3 / 4) << "the quick path should decide most random cases";
+}
+
+// Roots within a tiny fraction of an ulp of a midpoint of T, where a wrong sign at the midpoint
+// would round the wrong way. With P = digits(T), b odd and 2k + 1 = e / b mod 2^(P+1) (e = 1 or
+// -1), the integer a = ((2k + 1) b - e) / 2^(P+1) makes a / b = m - e / (b 2^(P+1)) for the
+// midpoint m = (2k + 1) / 2^(P+1) of k / 2^P and (k + 1) / 2^P: a / b lies 2^-(P+1) / b from m,
+// below it for e = 1 (nearest k / 2^P) and above it for e = -1 (nearest (k + 1) / 2^P); a and
+// b < 2^P are exact in T.
+// Only m >= 1/2 (2k + 1 >= 2^P), where T's spacing is 2^-P. p = a - b t, and (a - b t)(1 + t^2) =
+// a - b t + a t^2 - b t^3 (the same single root), on [0, 1].
+// In float the wider type (double) evaluates a - b m exactly, so the quick path decides every
+// linear case itself; elsewhere it may leave them to the walk, but never answer wrongly.
+TYPED_TEST(SolverAccuracy, RootsNextToMidpoints) {
+  using T = TypeParam;
+  using detail::exact::Int;
+  constexpr int P = std::numeric_limits<T>::digits;
+  const Int modulus = Int(1) << (P + 1), mask = modulus - 1;
+  std::mt19937_64 rng(cases::seed_from_env() + 3);
+  auto random_bits = [&](int bits) {
+    Int r = 0;
+    for (int have = 0; have < bits; have += 64) r = (r << 64) + Int(rng());
+    return r & ((Int(1) << bits) - 1);
+  };
+  std::size_t linear = 0, linear_decided = 0;
+  for (int i = 0; i < 800; ++i) {
+    const Int b = random_bits(P) | (Int(1) << (P - 1)) | 1;  // odd, in [2^(P-1), 2^P)
+    Int inverse = b;  // Newton's iteration for 1/b mod 2^(P+1): each step doubles the correct bits
+    for (int step = 0; step < 7; ++step) inverse = (inverse * ((modulus + 2 - ((b * inverse) & mask)) & mask)) & mask;
+    const bool below = i % 2 == 0;
+    const Int odd = below ? inverse : Int((modulus - inverse) & mask);  // 2k + 1
+    const Int a = (odd * b - (below ? 1 : -1)) >> (P + 1);
+    ASSERT_EQ(a * modulus, odd * b - (below ? 1 : -1));
+    if (odd < (Int(1) << P)) continue;  // m < 1/2: k / 2^P and (k + 1) / 2^P are not adjacent in T
+    const Int k = odd >> 1;
+    using std::ldexp;
+    const T expected = ldexp(static_cast<T>(below ? k : Int(k + 1)), -P);
+    const T ta = static_cast<T>(a), tb = static_cast<T>(b);
+    for (const Poly<T>& p : {Poly<T>{{ta, T(-tb)}, 1}, Poly<T>{{ta, T(-tb), ta, T(-tb)}, 3}}) {
+      const RootOutcome<T> r = earliest_downward_root(SolverKind::Certified, p, T(0), T(1));
+      ASSERT_EQ(r.status, RootStatus::Root) << "a = " << a << ", b = " << b;
+      EXPECT_EQ(r.t, expected) << "a = " << a << ", b = " << b << ", degree " << p.degree;
+      T t{};
+      const detail::Quick q = detail::quick_earliest_root(p, T(0), T(1), t);
+      EXPECT_NE(q, detail::Quick::None);
+      if (q == detail::Quick::Root) {
+        EXPECT_EQ(t, expected) << "a = " << a << ", b = " << b << ", degree " << p.degree;
+        linear_decided += p.degree == 1;
+      }
+      linear += p.degree == 1;
+    }
+  }
+  EXPECT_GT(linear, 300u);
+  if (std::is_same_v<T, float>) {
+    EXPECT_EQ(linear_decided, linear);
+  }
+}
+
 std::size_t turning_count() {
   const char* s = std::getenv("PGE_TURNING_CASES");
   return s ? static_cast<std::size_t>(std::strtoull(s, nullptr, 10)) : 20000;

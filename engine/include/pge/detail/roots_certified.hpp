@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 namespace pge {
 namespace detail {
@@ -41,6 +42,190 @@ namespace detail {
 // How many calls of the certified solver this thread has sent to the exact solver: a cost
 // measure (tests assert that common cases stay in floating point).
 inline thread_local std::uint64_t certified_exact_fallbacks = 0;
+
+// The sign of q^(k)(x) evaluated in a wider type W in which x and j! / (j - k)! c_j are exact,
+// with its Horner error bound: 1 or -1 when that decides, 2 when it cannot, 0 for an exact zero.
+template <class T, class W> int wide_sign_of(const Poly<T>& q, int k, const W& x) {
+  const int d = q.degree - k;
+  W v(0), s(0);
+  const W ax = x < W(0) ? W(-x) : x;
+  for (int j = q.degree; j >= k; --j) {
+    W c = W(q.c[j]);
+    for (int f = j; f > j - k; --f) c *= W(f);  // j! / (j-k)! c_j, exact in W
+    v = v * x + c;
+    s = s * ax + (c < W(0) ? W(-c) : c);
+  }
+  const W bound = s * W(2 * d + 2) * (std::numeric_limits<W>::epsilon() / W(2)) + W(2 * d + 2) * std::numeric_limits<W>::min();
+  if (v > bound) return 1;
+  if (v < W(-bound)) return -1;
+  if (v == W(0) && s == W(0)) return 0;
+  return 2;
+}
+
+// --- the common case, proved without the derivatives' structure (docs/solvers.md, "certified")
+
+// p about a centre c: p(c + s) = sum q_k s^k, the q_k by repeated synthetic division, each within
+// e_k of its computed value. Every q_k is a sum of terms c_j binom(j, k) c^(j - k), each carrying
+// at most 2d roundings, so the same division on |c_j| and |c| bounds the error by gamma(2d) times
+// its result; (4d + 8) u with d = 4 covers that and the rounding of the bound, the last term
+// underflow.
+template <class T> struct Taylor {
+  T q[5]{}, e[5]{};
+};
+
+template <class T> Taylor<T> taylor_at(const Poly<T>& p, const T& c) {
+  // As a quartic whatever the degree (the terms above it are zero), so that the loops unroll.
+  Taylor<T> t;
+  T s[5];
+  const T ac = abs_of(c);
+  for (int k = 0; k < 5; ++k) {
+    t.q[k] = k <= p.degree ? p.c[k] : T(0);
+    s[k] = abs_of(t.q[k]);
+  }
+  for (int i = 0; i < 4; ++i)
+    for (int j = 3; j >= i; --j) {
+      t.q[j] += c * t.q[j + 1];
+      s[j] += ac * s[j + 1];
+    }
+  for (int k = 0; k < 5; ++k) t.e[k] = s[k] * T(24) * unit_roundoff<T>() + T(10) * std::numeric_limits<T>::min();
+  return t;
+}
+
+// Whether p > 0 on all of [c - w, c + w], or p' < 0 on all of it, from the Taylor form at c: with
+// a_k = |q_k| + e_k, p >= q0 - e0 + min(q2_low s^2 - a1 |s|) - a3 w^3 + min(q4 - e4, 0) w^4, where
+// q2_low = q2 - e2, and p' <= q1 + e1 + 2 a2 w + 3 max(q3 + e3, 0) w^2 + 4 a4 w^3. Each side is a
+// sum of non-negative terms of a few roundings each (the parabola's a1 w - q2_low w^2 is used only
+// where it is at least half of a1 w), compared after the factor 1 + 32 u.
+template <class T> bool positive_or_falling(const Taylor<T>& t, const T& w) {
+  const T inflate = T(1) + T(32) * unit_roundoff<T>(), tiny = T(16) * std::numeric_limits<T>::min();
+  T a[5];
+  for (int k = 0; k < 5; ++k) a[k] = abs_of(t.q[k]) + t.e[k];
+  const T w2 = w * w, w3 = w2 * w;
+  // The least of q2_low s^2 - a1 |s| on [-w, w]: at the vertex if it lies inside, else at w.
+  const T q2_low = t.q[2] - t.e[2];
+  const T parabola = q2_low > T(0) && a[1] <= T(2) * q2_low * w ? a[1] * a[1] / (T(4) * q2_low) : a[1] * w - q2_low * w2;
+  const T q4_low = t.q[4] - t.e[4];
+  const T below = t.e[0] + parabola + a[3] * w3 + (q4_low < T(0) ? T(-q4_low) * w2 * w2 : T(0));
+  if (t.q[0] > below * inflate + tiny) return true;
+  const T q3_high = t.q[3] + t.e[3];
+  const T above = t.e[1] + T(2) * a[2] * w + T(3) * (q3_high > T(0) ? q3_high : T(0)) * w2 + T(4) * a[4] * w3;
+  return T(-t.q[1]) > above * inflate + tiny;
+}
+
+// Whether p' > 0 on all of [c - w, c + w]: p' >= q1 - e1 - 2 a2 w + 3 min(q3 - e3, 0) w^2 - 4 a4 w^3.
+template <class T> bool rising(const Taylor<T>& t, const T& w) {
+  const T inflate = T(1) + T(32) * unit_roundoff<T>(), tiny = T(16) * std::numeric_limits<T>::min();
+  const T w2 = w * w;
+  const T q3_low = t.q[3] - t.e[3];
+  const T below = t.e[1] + T(2) * (abs_of(t.q[2]) + t.e[2]) * w + T(3) * (q3_low < T(0) ? T(-q3_low) : T(0)) * w2 +
+                  T(4) * (abs_of(t.q[4]) + t.e[4]) * w2 * w;
+  return t.q[1] > below * inflate + tiny;
+}
+
+// The same on [0, b] from p's own coefficients (exact: no shift), for 0 <= s <= b c_k s^k lying
+// between min(c_k, 0) b^k and max(c_k, 0) b^k: p > 0, or p' < 0, or p' > 0 and p(0) > 0.
+template <class T> bool positive_or_monotone_from_zero(const Poly<T>& p, const T& b) {
+  const T inflate = T(1) + T(32) * unit_roundoff<T>(), tiny = T(16) * std::numeric_limits<T>::min();
+  T below(0), slope_above(0), slope_below(0);  // sums of the negative and positive parts
+  for (int k = p.degree; k >= 1; --k) {
+    const T& c = p.c[k];
+    below = (below + (c < T(0) ? T(-c) : T(0))) * b;
+    if (k >= 2) {
+      slope_above = (slope_above + (c > T(0) ? T(k) * c : T(0))) * b;
+      slope_below = (slope_below + (c < T(0) ? T(-T(k) * c) : T(0))) * b;
+    }
+  }
+  if (p.c[0] > below * inflate + tiny) return true;
+  if (T(-p.c[1]) > slope_above * inflate + tiny) return true;
+  return p.c[0] > T(0) && p.c[1] > slope_below * inflate + tiny;
+}
+
+// Whether at every t in [a, b] p(t) > 0 or p'(t) < 0 (then p, once not positive, stays negative to
+// b: at a first return to zero it would be rising), by the Taylor form at the midpoint, or else
+// at those of the halves, down to `depth` halvings.
+template <class T> bool falls_where_not_positive(const Poly<T>& p, const T& a, const T& b, int depth) {
+  if (a == T(0) && positive_or_monotone_from_zero(p, b)) return true;  // every prediction starts at 0
+  const T c = a + (b - a) / T(2);
+  const T w = (c - a > b - c ? c - a : b - c) * (T(1) + T(4) * unit_roundoff<T>());
+  const Taylor<T> t = taylor_at(p, c);
+  if (positive_or_falling(t, w)) return true;
+  if (rising(t, w)) {  // then p > 0 on [a, b] if p(a) > 0
+    const Evaluation<T> at_a = evaluate_with_bound(p, a);
+    if (at_a.value > at_a.bound) return true;
+  }
+  if (depth == 0 || !(a < c && c < b)) return false;
+  return falls_where_not_positive(p, a, c, depth - 1) && falls_where_not_positive(p, c, b, depth - 1);
+}
+
+// The neighbours of a finite x in T (std::nextafter where T is a built-in type: Boost's float_next
+// takes the exponent apart and costs as much as an evaluation).
+template <class T> T step_up(const T& x) {
+  if constexpr (std::is_floating_point_v<T>) return std::nextafter(x, std::numeric_limits<T>::infinity());
+  else return boost::math::float_next(x);
+}
+template <class T> T step_down(const T& x) {
+  if constexpr (std::is_floating_point_v<T>) return std::nextafter(x, -std::numeric_limits<T>::infinity());
+  else return boost::math::float_prior(x);
+}
+
+enum class Quick { None, Root, Undecided };
+
+// Decides the common prediction without the derivatives' structure (Certifier): robust's walk in T
+// proposes the answer, and it is proved thus. None: p(hi) > 0 and p falls wherever it is not
+// positive on [lo, hi], so p never reaches zero there. Root x: x- < x < x+ its neighbours in T,
+// lo < x < hi, p positive at the midpoint of x- and x and negative at that of x and x+ (signs in
+// the wider type), and p falls wherever it is not positive on [lo, x+]: then p > 0 from lo to its
+// first zero, which lies between those midpoints, and p < 0 after it up to x+, so x is the
+// earliest downward root correctly rounded (and p(lo) > 0: neither overlap rule applies).
+// Anything else, and any sign the wider type cannot decide, is Undecided: the walk decides.
+template <class T> Quick quick_earliest_root(const Poly<T>& p, const T& lo, const T& hi, T& t) {
+  constexpr int kDepth = 3;
+  if (!(lo < hi)) return Quick::Undecided;
+  Poly<T> reduced = p;
+  reduced.degree = reduced_degree(p, lo, hi);
+  if (reduced.degree == 0) return Quick::Undecided;
+  bool found = false;
+  T x{};
+  auto first = [&](const T& r, bool) {
+    found = true;
+    x = r;
+    return true;
+  };
+  robust_walk(reduced, lo, hi, StartRule::CrossingsOnly, first, false, false);
+  if (!found) {
+    const Evaluation<T> at_hi = evaluate_with_bound(p, hi);
+    const bool none = at_hi.value > at_hi.bound && falls_where_not_positive(p, lo, hi, kDepth);
+    return none ? Quick::None : Quick::Undecided;
+  }
+  // Robust's root is within a few ulps: step to the T whose neighbouring midpoints bracket it.
+  using W = typename Wider<T>::type;
+  auto sign_between = [&](const T& a, const T& b) { return wide_sign_of(p, 0, (W(a) + W(b)) / W(2)); };
+  if (!(x > lo && x < hi)) return Quick::Undecided;
+  T up = step_up(x), down = step_down(x);
+  int s_up = sign_between(x, up), s_down = sign_between(down, x);
+  for (int step = 0; !(s_up == -1 && s_down == 1); ++step) {
+    if (step == 4) return Quick::Undecided;
+    if (s_up == 1 && s_down == 1) {  // the root lies above x+'s midpoint
+      down = x;
+      x = up;
+      up = step_up(x);
+      s_down = 1;
+      s_up = sign_between(x, up);
+    } else if (s_up == -1 && s_down == -1) {  // below x-'s midpoint
+      up = x;
+      x = down;
+      down = step_down(x);
+      s_up = -1;
+      s_down = sign_between(down, x);
+    } else {
+      return Quick::Undecided;  // a sign the wider type cannot decide, or not a single crossing
+    }
+    if (!(x > lo && x < hi)) return Quick::Undecided;
+  }
+  if (!falls_where_not_positive(p, lo, up, kDepth)) return Quick::Undecided;
+  t = x;
+  return Quick::Root;
+}
 
 template <class T> class Certifier {
  public:
@@ -248,24 +433,7 @@ template <class T> class Certifier {
   const Poly<T>& derivative(int k) const { return d_[k]; }
 
  private:
-  // 1 or -1 when the wider evaluation decides, 2 when it cannot.
-  template <class W> int wide_sign(int k, const W& x) const {
-    const Poly<T>& q = d_[0];
-    const int d = q.degree - k;
-    W v(0), s(0);
-    const W ax = x < W(0) ? W(-x) : x;
-    for (int j = q.degree; j >= k; --j) {
-      W c = W(q.c[j]);
-      for (int f = j; f > j - k; --f) c *= W(f);  // j! / (j-k)! c_j, exact in W
-      v = v * x + c;
-      s = s * ax + (c < W(0) ? W(-c) : c);
-    }
-    const W bound = s * W(2 * d + 2) * (std::numeric_limits<W>::epsilon() / W(2)) + W(2 * d + 2) * std::numeric_limits<W>::min();
-    if (v > bound) return 1;
-    if (v < W(-bound)) return -1;
-    if (v == W(0) && s == W(0)) return 0;
-    return 2;
-  }
+  template <class W> int wide_sign(int k, const W& x) const { return wide_sign_of(d_[0], k, x); }
 
   const exact::IntPoly& exact_poly(int k) {
     if (!exact_[k]) {
@@ -283,19 +451,13 @@ template <class T> class Certifier {
 
 }  // namespace detail
 
-// The certified solver (see SolverKind). Coefficients and ends must be finite.
+namespace detail {
+
+// The certified walk over the pieces of p'' (see the file comment); p is trimmed, of degree >= 1.
 template <class T, class Visit>
-bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& hi, StartRule rule, Visit&& visit) {
-  using detail::sign_of;
-  using Certifier = detail::Certifier<T>;
-  using std::isfinite;
-  if (!(lo <= hi) || !isfinite(lo) || !isfinite(hi)) return false;
-  for (int k = 0; k <= p_in.degree; ++k)
-    if (!isfinite(p_in.c[k])) return false;
-  Poly<T> p = p_in;
-  p.degree = detail::trimmed_degree(p_in);
-  if (p.degree == 0) return false;
-  Certifier cert(p, lo, hi);
+bool certified_walk(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Visit& visit) {
+  using Cert = Certifier<T>;
+  Cert cert(p, lo, hi);
   int visited = 0;
   auto counted = [&](const T& t, bool overlap) {
     ++visited;
@@ -317,9 +479,9 @@ bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& h
   if (lo == hi) return false;
 
   // The pieces of p'' (level 2): p' is monotone on each, or (an adjacent pair) has one extremum.
-  typename Certifier::Points below;
+  typename Cert::Points below;
   if (p.degree >= 2) {
-    if (cert.level(2, below) == Certifier::Verdict::Undecided) return fall_back();
+    if (cert.level(2, below) == Cert::Verdict::Undecided) return fall_back();
   } else {  // p' is a constant
     below.push(lo, 1);
     below.push(hi, 1);
@@ -351,12 +513,12 @@ bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& h
     }
     T t;
     if (s_u > 0 && s_v < 0) {  // one root in (u, v)
-      if (cert.nearest_root(u, v, t) == Certifier::Verdict::Undecided) return fall_back();
+      if (cert.nearest_root(u, v, t) == Cert::Verdict::Undecided) return fall_back();
       if (counted(t, false)) return true;
     } else if ((s_u > 0 && s_v > 0 && has_min) || (s_u < 0 && s_v < 0 && has_max)) {
       // The extremum decides: bracket it by adjacent T values (ca, cb) and look at p there.
       T ca, cb;
-      if (cert.narrow(1, u, v, slope_u, ca, cb) == Certifier::Verdict::Undecided) return fall_back();
+      if (cert.narrow(1, u, v, slope_u, ca, cb) == Cert::Verdict::Undecided) return fall_back();
       const int s_ca = cert.sign(0, ca), s_cb = cert.sign(0, cb);
       if (s_ca == 0 || s_cb == 0) return fall_back();
       // Minimum: p falls on [u, ca], so a negative p(ca) puts the root there. Maximum: p falls
@@ -369,7 +531,7 @@ bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& h
         if (!cert.extremum_clear(0, ca, cb, -1, slope_u)) return fall_back();
         if (counted(cert.nearest(ca, cb, slope_u, 1), true)) return true;
       } else if (in_first || in_last) {
-        if (cert.nearest_root(in_first ? u : cb, in_first ? ca : v, t) == Certifier::Verdict::Undecided) return fall_back();
+        if (cert.nearest_root(in_first ? u : cb, in_first ? ca : v, t) == Cert::Verdict::Undecided) return fall_back();
         if (counted(t, false)) return true;
       } else if (s_ca > 0 && s_cb < 0) {
         if (counted(cert.nearest(ca, cb, 1), false)) return true;
@@ -382,6 +544,35 @@ bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& h
     slope_u = slope_v;
   }
   return false;
+}
+
+}  // namespace detail
+
+// The certified solver (see SolverKind). Coefficients and ends must be finite.
+template <class T, class Visit>
+bool certified_visit_downward_roots(const Poly<T>& p_in, const T& lo, const T& hi, StartRule rule, Visit&& visit) {
+  using std::isfinite;
+  if (!(lo <= hi) || !isfinite(lo) || !isfinite(hi)) return false;
+  for (int k = 0; k <= p_in.degree; ++k)
+    if (!isfinite(p_in.c[k])) return false;
+  Poly<T> p = p_in;
+  p.degree = detail::trimmed_degree(p_in);
+  if (p.degree == 0) return false;
+  T t;
+  switch (detail::quick_earliest_root(p, lo, hi, t)) {
+    case detail::Quick::None: return false;
+    case detail::Quick::Undecided: return detail::certified_walk(p, lo, hi, rule, visit);
+    case detail::Quick::Root: break;
+  }
+  if (visit(t, false)) return true;
+  // Declined: the walk finds t again first (its roots are exact), and the rest after it.
+  bool skipped = false;
+  auto later = [&](const T& r, bool overlap) {
+    if (skipped) return visit(r, overlap);
+    skipped = true;
+    return false;
+  };
+  return detail::certified_walk(p, lo, hi, rule, later);
 }
 
 }  // namespace pge

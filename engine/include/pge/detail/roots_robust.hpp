@@ -122,11 +122,11 @@ template <class T> int quadratic_roots(const T& c2, const T& c1, const T& c0, T&
 // Halley steps x - 2 p p' / (2 p'^2 - p p'') from x (value, slope and curvature in one Horner
 // pass; cubic convergence: about 5 steps on collision quartics against 7 for Newton), kept inside
 // the bracket by a bisection step whenever one would leave it; the bracket shrinks by the sign of
-// p at every step. Stops when the step falls below rounding of x, or when the bracket closes on
-// adjacent floating-point numbers. Started at the end where p p'' > 0 (Fourier's condition), the
-// steps approach the root from one side.
-template <class T> T refine_root(const Poly<T>& p, T a, T b, int sign_a, T x) {
-  const T tiny = std::numeric_limits<T>::epsilon() / T(2);
+// p at every step. Stops when the step falls below rounding of x (below `settle` |x|), or when the
+// bracket closes on adjacent floating-point numbers. Started at the end where p p'' > 0 (Fourier's
+// condition), the steps approach the root from one side.
+template <class T>
+T refine_root(const Poly<T>& p, T a, T b, int sign_a, T x, const T& settle = std::numeric_limits<T>::epsilon() / T(2)) {
   for (int it = 0; it < kMaxRootIterations; ++it) {
     T f = p.c[p.degree], slope(0), half_curvature(0);
     for (int k = p.degree - 1; k >= 0; --k) {
@@ -138,7 +138,7 @@ template <class T> T refine_root(const Poly<T>& p, T a, T b, int sign_a, T x) {
     if (sign_of(f) == sign_a) a = x; else b = x;
     const T denominator = slope * slope - f * half_curvature;
     T next = denominator != T(0) ? T(x - f * slope / denominator) : x;
-    if (denominator != T(0) && abs_of(next - x) <= tiny * abs_of(x)) return next;
+    if (denominator != T(0) && abs_of(next - x) <= settle * abs_of(x)) return next;
     if (!(next > a && next < b)) {
       next = a + (b - a) / T(2);
       if (!(next > a && next < b)) return abs_of(p(a)) <= abs_of(p(b)) ? a : b;  // adjacent
@@ -149,12 +149,28 @@ template <class T> T refine_root(const Poly<T>& p, T a, T b, int sign_a, T x) {
 }
 
 // refine_root from the end of (a, b) that Fourier's condition picks, judged by the curvature of
-// p at the midpoint (callers' brackets lie between inflection points).
-template <class T> T refine_root(const Poly<T>& p, const Poly<T>& d2, const T& a, const T& b, int sign_a) {
+// p at the midpoint (callers' brackets lie between inflection points). A `candidate` (certified's,
+// which proves it and steps it to the nearest T itself) needs fewer steps: it stops once a step is
+// below sqrt(epsilon) |x| (the cubic convergence has then reached rounding), and it starts where
+// p's tangent at the other end o meets zero, which lies between the root and Fourier's end (p is
+// convex or concave on the bracket) and usually much nearer the root.
+template <class T>
+T refine_root(const Poly<T>& p, const Poly<T>& d2, const T& a, const T& b, int sign_a, bool candidate = false) {
   const T mid = a + (b - a) / T(2);
   const T curvature = d2(mid);
-  const T start = curvature == T(0) ? mid : ((curvature > T(0)) == (sign_a > 0) ? a : b);
-  return refine_root(p, a, b, sign_a, start);
+  const bool from_a = (curvature > T(0)) == (sign_a > 0);
+  T start = curvature == T(0) ? mid : (from_a ? a : b);
+  if (!candidate) return refine_root(p, a, b, sign_a, start);
+  const T& o = from_a ? b : a;
+  T f = p.c[p.degree], slope(0);
+  for (int k = p.degree - 1; k >= 0; --k) {
+    slope = slope * o + f;
+    f = f * o + p.c[k];
+  }
+  const T tangent = slope != T(0) ? T(o - f / slope) : o;
+  if (curvature != T(0) && tangent > a && tangent < b) start = tangent;
+  using std::sqrt;
+  return refine_root(p, a, b, sign_a, start, T(sqrt(std::numeric_limits<T>::epsilon())));
 }
 
 // The roots of p (degree <= 2) strictly inside (lo, hi), sorted, by the closed forms: the
@@ -177,7 +193,7 @@ template <class T> int interior_roots(const Poly<T>& p, const T& lo, const T& hi
 // The root of p in (a, b) where p(a) > 0 > p(b) and p has no other root (p monotone, or with one
 // extremum).
 template <class T>
-T downward_root_in_piece(const Poly<T>& p, const Poly<T>& d2, int deg, const T& a, const T& b) {
+T downward_root_in_piece(const Poly<T>& p, const Poly<T>& d2, int deg, const T& a, const T& b, bool candidate) {
   if (deg == 1) {
     T t = -p.c[0] / p.c[1];
     return t < a ? a : (t > b ? b : t);
@@ -191,7 +207,7 @@ T downward_root_in_piece(const Poly<T>& p, const Poly<T>& d2, int deg, const T& 
       if (t >= a && t <= b) return t;
     }
   }
-  return refine_root(p, d2, a, b, 1);
+  return refine_root(p, d2, a, b, 1, candidate);
 }
 
 enum class Walk { Stopped, Finished, Doubt };
@@ -214,14 +230,21 @@ template <class T> bool doubtful(const Poly<T>& p, const T& x, const T& abs_sum,
 
 // The robust walk (see robust_visit_downward_roots). p has its reduced degree (>= 1). `emit`
 // receives the downward roots in order. Returns Doubt, before emitting anything more, when a
-// sign it needs is within rounding and `widest` is false.
+// sign it needs is within rounding and `widest` is false. With `checked` false it takes every
+// computed sign as it is, never doubts and finds its roots as candidates (refine_root):
+// certified's, which it proves itself.
 template <class T, class Emit>
-Walk robust_walk(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Emit& emit, bool widest) {
+Walk robust_walk(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Emit& emit, bool widest, bool checked = true) {
   const Poly<T> d1 = p.derivative();
   T abs_sum(0);
   for (int k = 0; k <= p.degree; ++k) abs_sum += abs_of(p.c[k]);
+  auto unsure = [&](const T& x, T& value) {
+    if (checked) return doubtful(p, x, abs_sum, value);
+    value = p(x);
+    return false;
+  };
   T p_lo;
-  if (doubtful(p, lo, abs_sum, p_lo) && !widest) return Walk::Doubt;
+  if (unsure(lo, p_lo) && !widest) return Walk::Doubt;
   // At lo: touching or overlapping, and decreasing, collides at once (the overlap rule).
   if ((p_lo == T(0) || (p_lo < T(0) && rule == StartRule::OverlapCollides)) && sign_just_after(d1, lo) < 0)
     if (emit(lo, p_lo < T(0))) return Walk::Stopped;
@@ -239,7 +262,7 @@ Walk robust_walk(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Emi
   for (int i = 0; i < n; ++i) {
     const T v = ends[i];
     T p_v;
-    if (doubtful(p, v, abs_sum, p_v) && !widest) return Walk::Doubt;
+    if (unsure(v, p_v) && !widest) return Walk::Doubt;
     const int s_v = sign_of(p_v);
     const int slope_u = sign_of(d1(u)), slope_v = sign_of(d1(v));
     const bool has_min = slope_u < 0 && slope_v > 0, has_max = slope_u > 0 && slope_v < 0;
@@ -249,9 +272,9 @@ Walk robust_walk(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Emi
         c = -d1.c[0] / d1.c[1];
         c = c < u ? u : (c > v ? v : c);
       } else {
-        c = refine_root(d1, d2.derivative(), u, v, slope_u);
+        c = refine_root(d1, d2.derivative(), u, v, slope_u, !checked);
       }
-      if (doubtful(p, c, abs_sum, p_c)) {
+      if (unsure(c, p_c)) {
         if (!widest) return false;
         p_c = T(0);
       }
@@ -259,21 +282,21 @@ Walk robust_walk(const Poly<T>& p, const T& lo, const T& hi, StartRule rule, Emi
     };
     T c, p_c;
     if (s_u > 0 && s_v < 0) {
-      if (emit(downward_root_in_piece(p, d2, p.degree, u, v), false)) return Walk::Stopped;
+      if (emit(downward_root_in_piece(p, d2, p.degree, u, v, !checked), false)) return Walk::Stopped;
     } else if (s_u > 0 && s_v == 0 && has_min) {  // p dips below zero and comes back to it at v
       if (!extremum(c, p_c)) return Walk::Doubt;
-      if (emit(downward_root_in_piece(p, d2, p.degree, u, c), false)) return Walk::Stopped;
+      if (emit(downward_root_in_piece(p, d2, p.degree, u, c, !checked), false)) return Walk::Stopped;
     } else if (s_u > 0 && s_v == 0) {  // p arrives at zero from above: a root at hi, or a crossing
       if ((v == hi || sign_just_after(p, v) < 0) && emit(v, false)) return Walk::Stopped;
     } else if (s_u > 0 && s_v > 0 && has_min) {
       if (!extremum(c, p_c)) return Walk::Doubt;
-      if (p_c < T(0) && emit(downward_root_in_piece(p, d2, p.degree, u, c), false)) return Walk::Stopped;
+      if (p_c < T(0) && emit(downward_root_in_piece(p, d2, p.degree, u, c, !checked), false)) return Walk::Stopped;
     } else if (s_u < 0 && s_v == 0 && has_max) {  // p rises above zero and comes down to it at v
       if (!extremum(c, p_c)) return Walk::Doubt;
       if (p_c > T(0) && (v == hi || sign_just_after(p, v) < 0) && emit(v, false)) return Walk::Stopped;
     } else if (s_u < 0 && s_v < 0 && has_max) {
       if (!extremum(c, p_c)) return Walk::Doubt;
-      if (p_c > T(0) && emit(downward_root_in_piece(p, d2, p.degree, c, v), false)) return Walk::Stopped;
+      if (p_c > T(0) && emit(downward_root_in_piece(p, d2, p.degree, c, v, !checked), false)) return Walk::Stopped;
     }
     s_u = s_v != 0 ? s_v : sign_just_after(p, v);
     u = v;
