@@ -24,6 +24,7 @@
 #pragma once
 
 #include "pge/constants.hpp"
+#include "pge/detail/interval.hpp"  // interval_next_up, interval_next_down: x's neighbours
 #include "pge/detail/roots_exact.hpp"
 #include "pge/scalar.hpp"
 
@@ -157,17 +158,6 @@ template <class T> bool falls_where_not_positive(const Poly<T>& p, const T& a, c
   return falls_where_not_positive(p, a, c, depth - 1) && falls_where_not_positive(p, c, b, depth - 1);
 }
 
-// The neighbours of a finite x in T (std::nextafter where T is a built-in type: Boost's float_next
-// takes the exponent apart and costs as much as an evaluation).
-template <class T> T step_up(const T& x) {
-  if constexpr (std::is_floating_point_v<T>) return std::nextafter(x, std::numeric_limits<T>::infinity());
-  else return boost::math::float_next(x);
-}
-template <class T> T step_down(const T& x) {
-  if constexpr (std::is_floating_point_v<T>) return std::nextafter(x, -std::numeric_limits<T>::infinity());
-  else return boost::math::float_prior(x);
-}
-
 enum class Quick { None, Root, Undecided };
 
 // Decides the common prediction without the derivatives' structure (Certifier): robust's walk in T
@@ -201,20 +191,20 @@ template <class T> Quick quick_earliest_root(const Poly<T>& p, const T& lo, cons
   using W = typename Wider<T>::type;
   auto sign_between = [&](const T& a, const T& b) { return wide_sign_of(p, 0, (W(a) + W(b)) / W(2)); };
   if (!(x > lo && x < hi)) return Quick::Undecided;
-  T up = step_up(x), down = step_down(x);
+  T up = interval_next_up(x), down = interval_next_down(x);
   int s_up = sign_between(x, up), s_down = sign_between(down, x);
   for (int step = 0; !(s_up == -1 && s_down == 1); ++step) {
     if (step == 4) return Quick::Undecided;
     if (s_up == 1 && s_down == 1) {  // the root lies above x+'s midpoint
       down = x;
       x = up;
-      up = step_up(x);
+      up = interval_next_up(x);
       s_down = 1;
       s_up = sign_between(x, up);
     } else if (s_up == -1 && s_down == -1) {  // below x-'s midpoint
       up = x;
       x = down;
-      down = step_down(x);
+      down = interval_next_down(x);
       s_up = -1;
       s_down = sign_between(down, x);
     } else {
