@@ -51,9 +51,10 @@ set(CPACK_DEBIAN_RUNTIME_DESCRIPTION
     "event-driven 2D physics engine: the pge command\n run, check, fuzz, report, gate, render and compare scenes; every event judged by an exact oracle.")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME libpge-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
-# Static libraries: a consumer compiles against these headers and links these libraries.
+# Static libraries: a consumer compiles against these headers and links these libraries
+# (libgcc-12-dev: quadmath.h and libquadmath for pge::Quad, GCC's __float128).
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS
-    "libboost-dev (>= ${PGE_BOOST_MIN}), libgmp-dev, libmpfr-dev, libcgal-dev (>= ${PGE_CGAL_MIN}), libflint-arb-dev, libfmt-dev, nlohmann-json3-dev (>= ${PGE_NLOHMANN_JSON_MIN})")
+    "libboost-dev (>= ${PGE_BOOST_MIN}), libgcc-12-dev, libgmp-dev, libmpfr-dev, libcgal-dev (>= ${PGE_CGAL_MIN}), libflint-arb-dev, libfmt-dev, nlohmann-json3-dev (>= ${PGE_NLOHMANN_JSON_MIN})")
 set(CPACK_DEBIAN_DEVELOPMENT_DESCRIPTION
     "event-driven 2D physics engine: headers, static libraries and CMake package\n pge::engine, pge::oracle (the exact referee) and pge::io (scene files) for find_package(pge).")
 include(CPack)

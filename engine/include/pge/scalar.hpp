@@ -1,9 +1,15 @@
 // Scalar types the engine is instantiated for, and the few traits it needs of them.
 #pragma once
 
+#if defined(__STRICT_ANSI__)
+#error "pge::Quad is GCC's __float128 (Boost.Multiprecision float128): compile in the GNU dialect (-std=gnu++20; CMake: CXX_EXTENSIONS ON, its default)"
+#endif
+
 #include <boost/multiprecision/cpp_bin_float.hpp>
+#include <boost/multiprecision/float128.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string_view>
@@ -11,9 +17,70 @@
 
 namespace pge {
 
-// IEEE-754 binary128 semantics (113-bit significand), in software, header-only.
-// Slow, but exact to its precision and available without libquadmath.
-using Quad = boost::multiprecision::cpp_bin_float_quad;
+// IEEE-754 binary128 (113-bit significand): GCC's __float128, its arithmetic in libgcc's software
+// floating point (+, -, *, / correctly rounded), its functions in libquadmath. Until 2026-12 it was
+// Boost's cpp_bin_float_quad: six times slower, and not quite binary128 (Boost 1.74 rounds about
+// one sum in 2,000 of far-apart magnitudes the wrong way, tests/test_quad.cpp), so a few quad
+// runs changed with it. Three things below keep the rest as they were: the square root is
+// correctly rounded (libquadmath's sqrtq is not: a quarter of random inputs come out one ulp
+// off), sin, cos, acos and cbrt are the old type's own, and a wider binary number converts to
+// Quad rounded once.
+using Quad = boost::multiprecision::float128;
+using QuadSoftware = boost::multiprecision::cpp_bin_float_quad;  // the old type: same format, no subnormals
+
+namespace detail {
+
+// sign(a b - c), exactly, for a b within a factor of two of c (c = a b rounded, say) and far from
+// overflow and underflow, in a binary type B without a fused multiply-add: Dekker's exact product
+// (Dekker, "A floating-point technique for extending the available precision", Numer. Math. 18,
+// 1971: a p-bit significand splits into halves with the constant 2^ceil(p/2) + 1), then p - c
+// exact by Sterbenz's lemma.
+template <class B> int exact_product_minus_sign(const B& a, const B& b, const B& c) {
+  constexpr int half = (std::numeric_limits<B>::digits + 1) / 2;
+  const B split = B(std::uint64_t{1} << half) + B(1);
+  const auto halves = [&](const B& x, B& hi, B& lo) {
+    const B s = split * x;
+    hi = s - (s - x);
+    lo = x - hi;
+  };
+  B ah, al, bh, bl;
+  halves(a, ah, al);
+  halves(b, bh, bl);
+  const B p = a * b;
+  const B err = (((ah * bh - p) + ah * bl) + al * bh) + al * bl;  // a b - p, exactly
+  const B d = (p - c) + err;
+  return (d > B(0)) - (d < B(0));
+}
+
+// The correctly rounded square root (to nearest). x = m 4^k with m in [1/2, 2) (exact); r =
+// sqrtq(m) is within an ulp; r is the nearest to sqrt(m) exactly when r r- < m <= r r+ (r- and
+// r+ the neighbours of r: Tuckerman's test, as the midpoints' squares differ from these products by
+// less than the spacing of m's multiples of 2^-226 and are never m itself); otherwise step.
+inline Quad quad_sqrt(const Quad& x) {
+  if (!(x > 0) || !(x < std::numeric_limits<Quad>::infinity())) return Quad(sqrtq(x.backend().value()));
+  int e = 0;
+  Quad m = frexp(x, &e);  // x = m 2^e, m in [1/2, 1)
+  if (e % 2 != 0) {
+    m = ldexp(m, 1);
+    --e;
+  }
+  Quad r(sqrtq(m.backend().value()));
+  const auto up = [](const Quad& v) { return Quad(nextafterq(v.backend().value(), 4)); };
+  const auto down = [](const Quad& v) { return Quad(nextafterq(v.backend().value(), 0)); };
+  for (int k = 0; k < 4 && exact_product_minus_sign(r, up(r), m) < 0; ++k) r = up(r);
+  for (int k = 0; k < 4 && exact_product_minus_sign(r, down(r), m) >= 0; ++k) r = down(r);
+  return ldexp(r, e / 2);
+}
+
+// The old type's sin, cos, acos and cbrt (engine/src/quad.cpp), so that fast's cubic roots and a
+// turning body's vertices stay what they were. libquadmath's are closer (about 3% of random
+// arguments in [-10, 10] not correctly rounded, against 78%), a change of results of its own.
+Quad quad_sin(const Quad& x);
+Quad quad_cos(const Quad& x);
+Quad quad_acos(const Quad& x);
+Quad quad_cbrt(const Quad& x);
+
+}  // namespace detail
 
 enum class ScalarKind { Float, Double, LongDouble, QuadPrecision };
 
@@ -56,3 +123,29 @@ template <class F> auto with_scalar(ScalarKind kind, F&& f) {
 template <class T> double to_double(const T& x) { return static_cast<double>(x); }
 
 }  // namespace pge
+
+// Found by argument-dependent lookup from every unqualified call on a Quad (`using std::sqrt;
+// sqrt(x)`), and preferred to Boost's templates for float128 as exact matches that are not templates.
+namespace boost::multiprecision {
+inline float128 sqrt(const float128& x) { return pge::detail::quad_sqrt(x); }
+inline float128 sin(const float128& x) { return pge::detail::quad_sin(x); }
+inline float128 cos(const float128& x) { return pge::detail::quad_cos(x); }
+inline float128 acos(const float128& x) { return pge::detail::quad_acos(x); }
+inline float128 cbrt(const float128& x) { return pge::detail::quad_cbrt(x); }
+}  // namespace boost::multiprecision
+
+// A wider binary cpp_bin_float converted to Quad: Boost's generic conversion adds the value's
+// 63-bit pieces one by one, rounding each time, and misses the nearest Quad in about one case in
+// 4,000; converting to the old type first (cpp_bin_float rounds once, to nearest) and then to
+// Quad (exact: 113 bits fit) gives the nearest. Found by argument-dependent lookup from Boost's
+// converting constructor, and more specialized than its generic template.
+namespace boost::multiprecision::backends {
+template <unsigned Digits, digit_base_type Base, class Allocator, class Exponent, Exponent MinE, Exponent MaxE>
+void generic_interconvert(float128_backend& to, const cpp_bin_float<Digits, Base, Allocator, Exponent, MinE, MaxE>& from,
+                          const mpl::int_<number_kind_floating_point>& to_kind,
+                          const mpl::int_<number_kind_floating_point>& from_kind) {
+  using Wide = number<cpp_bin_float<Digits, Base, Allocator, Exponent, MinE, MaxE>, et_off>;
+  const pge::QuadSoftware rounded{Wide(from)};
+  boost::multiprecision::detail::generic_interconvert(to, rounded.backend(), to_kind, from_kind);
+}
+}  // namespace boost::multiprecision::backends

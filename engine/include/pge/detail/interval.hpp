@@ -81,6 +81,8 @@ template <class B> B interval_next_up(const B& x) {
     return std::nextafter(x, std::numeric_limits<B>::infinity());
   } else if constexpr (std::is_floating_point_v<B>) {
     return std::nextafter(x, std::numeric_limits<B>::infinity());
+  } else if constexpr (std::is_same_v<B, Quad>) {
+    return Quad(nextafterq(x.backend().value(), std::numeric_limits<Quad>::infinity().backend().value()));
   } else {
     if (x == std::numeric_limits<B>::max()) return std::numeric_limits<B>::infinity();
     return boost::math::float_next(x);
@@ -108,26 +110,14 @@ template <class B> struct Rounding {
     return (e > B(0)) - (e < B(0));
   }
   // sign(x y - r): one fused multiply-add for double (exact by IEEE 754: x y - r rounded once,
-  // and its sign is the exact error's), Dekker's exact product (Dekker, "A floating-point
-  // technique for extending the available precision", Numer. Math. 18, 1971) for float and long
-  // double, a wide product for Quad.
+  // and its sign is the exact error's), Dekker's exact product (pge/scalar.hpp) for float, long
+  // double and Quad, a wide product for other types.
   static int product_error_sign(const B& x, const B& y, const B& r) {
     if constexpr (std::is_same_v<B, double>) {
       const B e = std::fma(x, y, -r);
       return (e > B(0)) - (e < B(0));
-    } else if constexpr (builtin) {
-      constexpr int half = (std::numeric_limits<B>::digits + 1) / 2;
-      const B split = B(std::uint64_t{1} << half) + B(1);
-      auto parts = [&](const B& a, B& hi, B& lo) {
-        const B c = split * a;
-        hi = c - (c - a);
-        lo = a - hi;
-      };
-      B xh, xl, yh, yl;
-      parts(x, xh, xl);
-      parts(y, yh, yl);
-      const B e = (((xh * yh - r) + xh * yl) + xl * yh) + xl * yl;
-      return (e > B(0)) - (e < B(0));
+    } else if constexpr (builtin || std::is_same_v<B, Quad>) {
+      return exact_product_minus_sign(x, y, r);
     } else {
       using Exact = boost::multiprecision::number<
           boost::multiprecision::cpp_bin_float<2 * std::numeric_limits<B>::digits + 2,
