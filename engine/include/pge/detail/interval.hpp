@@ -28,7 +28,6 @@
 #include "pge/scalar.hpp"
 
 #include <boost/math/constants/constants.hpp>
-#include <boost/math/special_functions/next.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include <algorithm>
@@ -81,11 +80,9 @@ template <class B> B interval_next_up(const B& x) {
     return std::nextafter(x, std::numeric_limits<B>::infinity());
   } else if constexpr (std::is_floating_point_v<B>) {
     return std::nextafter(x, std::numeric_limits<B>::infinity());
-  } else if constexpr (std::is_same_v<B, Quad>) {
-    return Quad(nextafterq(x.backend().value(), std::numeric_limits<Quad>::infinity().backend().value()));
   } else {
-    if (x == std::numeric_limits<B>::max()) return std::numeric_limits<B>::infinity();
-    return boost::math::float_next(x);
+    static_assert(std::is_same_v<B, Quad>, "intervals are over float, double, long double or Quad");
+    return Quad(nextafterq(x.backend().value(), std::numeric_limits<Quad>::infinity().backend().value()));
   }
 }
 template <class B> B interval_next_down(const B& x) { return -interval_next_up<B>(-x); }
@@ -111,20 +108,13 @@ template <class B> struct Rounding {
   }
   // sign(x y - r): one fused multiply-add for double (exact by IEEE 754: x y - r rounded once,
   // and its sign is the exact error's), Dekker's exact product (pge/scalar.hpp) for float, long
-  // double and Quad, a wide product for other types.
+  // double and Quad.
   static int product_error_sign(const B& x, const B& y, const B& r) {
     if constexpr (std::is_same_v<B, double>) {
       const B e = std::fma(x, y, -r);
       return (e > B(0)) - (e < B(0));
-    } else if constexpr (builtin || std::is_same_v<B, Quad>) {
-      return exact_product_minus_sign(x, y, r);
     } else {
-      using Exact = boost::multiprecision::number<
-          boost::multiprecision::cpp_bin_float<2 * std::numeric_limits<B>::digits + 2,
-                                               boost::multiprecision::digit_base_2>,
-          boost::multiprecision::et_off>;
-      const Exact e = Exact(x) * Exact(y) - Exact(r);
-      return (e > 0) - (e < 0);
+      return exact_product_minus_sign(x, y, r);
     }
   }
   // Whether Dekker's splitting of x and y cannot overflow.
