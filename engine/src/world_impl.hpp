@@ -226,6 +226,8 @@ template <class T> struct World<T>::Impl {
   // predict_rotating asks it first); `clear` is set to the time before which it proved that
   // nothing touches.
   std::optional<PredictedContact<T>> search_rotating(BodyIndex lo, BodyIndex hi, const T& limit, const T& from, T& clear);
+  // A predictor's contact record as the contact kind and features the heap and the events name.
+  static PredictedContact<T> contact_of(const detail::RotatingContact<T>& c);
   // A scheduled contact of a rotating pair as the predictor's contact record, at time t.
   detail::RotatingContact<T> rotating_record(const Scheduled<T>& s, const T& t) const;
   // The contact's point and normal (from lo towards hi) at time t.

@@ -135,9 +135,29 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   if (!(end > from)) end = std::min(wanted, detail::interval_next_up(from));  // progress, however late the clock
   detail::RotatingOptions options;
   options.correctly_rounded = solver == SolverKind::Certified;
+  // A contact at `from` (touching there, or overlapping) whose points do not approach is no
+  // contact (the predictor searches past it): its impulse would be none, the state would stay
+  // as it is, and the same contact would be found again at once. The translating engine's start
+  // rule asks the same of its contact function (decreasing at the start). Two turning boxes
+  // that bounced face on face with their corners aligned gave 199 zero-impulse events at one
+  // instant without it: a corner sliding away along the other's edge line, its contact function
+  // 0 throughout, found touching at once each time
+  // (fixtures/regressions/rotation/turning-boxes-meet-face-on-face-with-corners-aligned.json).
+  const auto approaching_start = [&](const detail::RotatingContact<T>& start) {
+    const PredictedContact<T> p = contact_of(start);
+    Scheduled<T> s;
+    s.time = start.t;
+    s.lo = lo;
+    s.hi = hi;
+    s.contact = p.contact;
+    s.feature_a = p.feature_a;
+    s.feature_b = p.feature_b;
+    return rotating_approaching(s);
+  };
   const detail::RotatingContact<T> c =
-      solver == SolverKind::Fast ? detail::predict_rotating_pair_fast(sa, sb, from, end)
-                                 : detail::predict_rotating_pair(sa, sb, from, end, StartRule::OverlapCollides, options);
+      solver == SolverKind::Fast
+          ? detail::predict_rotating_pair_fast(sa, sb, from, end)
+          : detail::predict_rotating_pair(sa, sb, from, end, StartRule::OverlapCollides, options, approaching_start);
   if (c.rounding_undecided) ++counts.undecided_roundings;
   PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
   out.rotating = true;
@@ -158,6 +178,16 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   }
   clear = c.t;
   if (c.t > horizon) return std::nullopt;
+  const PredictedContact<T> features = contact_of(c);
+  out.contact = features.contact;
+  out.feature_a = features.feature_a;
+  out.feature_b = features.feature_b;
+  return out;
+}
+
+template <class T>
+inline auto World<T>::Impl::contact_of(const detail::RotatingContact<T>& c) -> PredictedContact<T> {
+  PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
   const auto index = [](std::size_t k) { return static_cast<std::uint16_t>(k); };
   switch (c.feature) {
     case detail::RotatingFeature::VertexEdge:

@@ -50,7 +50,7 @@ struct SpinGenOptions {
   //   - CornerOnCorner: the engine has no corner rule for turning bodies, so a vertex meeting a
   //     vertex takes one edge's normal, and the contacts that follow at the same instant are
   //     decided by rounding, which the referee, deciding exactly, finds to be phantoms and time
-  //     errors (or the engine repeats a zero-impulse contact until max_events);
+  //     errors;
   //   - EdgeEnd with the corner landing on the segment's end on its path (at a dyadic time, not
   //     at the start): the same after the landing, in about one scene in 6,000;
   //   - restitution 1/2: two turning bodies that keep meeting chatter, ever slower, and robust

@@ -35,6 +35,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
@@ -108,6 +109,13 @@ template <class B> class RotatingPairPredictor {
  public:
   RotatingPairPredictor(const RotatingShape<B>& a, const RotatingShape<B>& b, StartRule rule, RotatingOptions opt)
       : a_(a), b_(b), rule_(rule), opt_(opt) {}
+
+  // A contact at the search's start (touching there, or the overlap rule's) whose points `test`
+  // says do not approach is searched past, as a graze already processed is (past_tangency),
+  // unless its gap goes certainly negative first. The engine asks its impulse test here: a
+  // contact at the start without an impulse leaves the state as it is, and would be found
+  // again at once, for ever.
+  void set_start_test(std::function<bool(const RotatingContact<B>&)> test) { start_test_ = std::move(test); }
 
   RotatingContact<B> earliest(const B& lo, const B& hi) {
     origin_ = lo;
@@ -432,6 +440,17 @@ template <class B> class RotatingPairPredictor {
         on_edge = false;
       if (on_edge && (!root.at_start_overlap ||
                       (possibly_inside(P, r, rho, Q, sq, root.t) && (!f || possibly_shallowest(P, r, rho, Q, sq, which.edge, root.t))))) {
+        // A contact at the start whose points do not approach, and whose gap does not go
+        // certainly negative before it goes certainly positive or rising (or the window ends),
+        // is searched past (see set_start_test). One whose gap goes negative stays: a body
+        // starting to rest on a face (a box lying on a floor under gravity) touches without
+        // approaching, and resting contact begins at that zero-impulse event.
+        if (root.t == from_ && !approaching_at_start(which, root.t))
+          if (const std::optional<B> past = past_tangency(gap, root.t, hi)) {
+            rule = StartRule::CrossingsOnly;
+            lo = *past;
+            continue;
+          }
         take(root, which);
         return;
       }
@@ -444,6 +463,21 @@ template <class B> class RotatingPairPredictor {
                    const B& rho, const PathAt<B>& Q, const RotatingShape<B>& sq, const B& lo, const B& until,
                    const Which& which) {
     search(f.gap, &f, P, sp, r, rho, Q, sq, lo, until, which);
+  }
+
+  // The caller's test of a contact at the search's start (set_start_test): whether its points
+  // approach, as its impulse would find; every contact passes without one.
+  bool approaching_at_start(const Which& which, const B& t) const {
+    if (!start_test_) return true;
+    RotatingContact<B> c;
+    c.status = RootStatus::Root;
+    c.t = t;
+    c.at_start_overlap = true;
+    c.feature = which.feature;
+    c.point_on_a = which.point_on_a;
+    c.point = which.point;
+    c.edge = which.edge;
+    return start_test_(c);
   }
 
   // Whether P's body lies certainly behind edge k of the segment Q at t (its vertices' mean).
@@ -593,6 +627,7 @@ template <class B> class RotatingPairPredictor {
   StartRule rule_, rule_now_ = StartRule::CrossingsOnly;
   B from_{};  // where the feature searches start (rule_now_ holds there)
   RotatingOptions opt_;
+  std::function<bool(const RotatingContact<B>&)> start_test_;
   RotatingContact<B> best_;
   B origin_{};
   // The fastest any point of one shape closes on the other over the search's window (advance);
@@ -712,8 +747,10 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
 
 template <class B>
 RotatingContact<B> predict_rotating_pair(const RotatingShape<B>& a, const RotatingShape<B>& b, const B& lo, const B& hi,
-                                         StartRule rule, RotatingOptions opt = {}) {
+                                         StartRule rule, RotatingOptions opt = {},
+                                         std::type_identity_t<std::function<bool(const RotatingContact<B>&)>> start_test = {}) {
   RotatingPairPredictor<B> p(a, b, rule, opt);
+  p.set_start_test(std::move(start_test));
   return p.earliest(lo, hi);
 }
 
