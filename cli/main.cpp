@@ -10,6 +10,7 @@
 #include "run.hpp"
 #include "stdout.hpp"
 
+#include "pge/oracle_exact.hpp"
 #include "pge/peers.hpp"
 
 #include <CLI/CLI.hpp>
@@ -75,6 +76,7 @@ std::string command_line(int argc, char** argv) {
 int main(int argc, char** argv) {
   using namespace pge::cli;
   send_library_stdout_to_stderr();
+  pge::oracle::use_pooled_gmp_allocation();  // the referee's exact numbers: see oracle_exact.hpp
   CLI::App app{"pge: an event-driven 2D physics engine and the harness that checks it.\n"};
   app.footer(kExitCodeHelp);
   app.require_subcommand(1);

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 namespace pge::oracle {
 namespace {
@@ -106,6 +108,57 @@ TEST(OracleNumbers, FormatOrdinalsAndRounding) {
 // ((3 - 2t)^2 = 4 has roots 1/2 and 5/2; the first is the downward crossing).
 ExactState half_state() {
   return state_of({moving_circle(1, {0, 0}, {1, 0}), moving_circle(1, {3, 0}, {-1, 0})});
+}
+
+// The pooled GMP allocation (oracle/src/gmp_pool.cpp) changes no value: a sequence of random
+// operations on numbers of 1 to 40 limbs (products, sums, shifts that grow and shrink, copies and
+// frees in random order) gives the same numbers with the pool as with GMP's default functions,
+// including numbers made before the pool was installed and freed after it.
+TEST(OracleNumbers, PooledGmpAllocationKeepsEveryValue) {
+  void* (*default_alloc)(size_t) = nullptr;
+  void* (*default_realloc)(void*, size_t, size_t) = nullptr;
+  void (*default_free)(void*, size_t) = nullptr;
+  mp_get_memory_functions(&default_alloc, &default_realloc, &default_free);
+  const auto workload = [](std::vector<mpz_class>& live) {
+    std::mt19937_64 rng(20261206);
+    std::vector<std::string> seen;
+    for (int step = 0; step < 20000; ++step) {
+      const std::size_t i = rng() % live.size(), j = rng() % live.size();
+      switch (rng() % 6) {
+        case 0: live[i] = live[i] * live[j]; break;
+        case 1: live[i] += live[j]; break;
+        case 2: live[i] <<= static_cast<mp_bitcnt_t>(rng() % 200); break;
+        case 3: live[i] >>= static_cast<mp_bitcnt_t>(rng() % 300); break;
+        case 4: live[i] = mpz_class(static_cast<unsigned long>(rng())) - live[j]; break;
+        default: live.erase(live.begin() + static_cast<long>(i)); live.push_back(mpz_class(static_cast<long>(rng() % 1000)) + 1);
+      }
+      if (mpz_sizeinbase(live[i].get_mpz_t(), 2) > 40 * 64) live[i] >>= 39 * 64;  // at most about 40 limbs
+      if (step % 97 == 0) seen.push_back(live[i].get_str(16));
+    }
+    for (const mpz_class& v : live) seen.push_back(v.get_str(16));
+    return seen;
+  };
+  const auto start = [] {
+    std::vector<mpz_class> v;
+    for (long k = 1; k <= 64; ++k) v.push_back(mpz_class(k) << static_cast<mp_bitcnt_t>(k * 37 % 500));
+    return v;
+  };
+  std::vector<mpz_class> plain = start();
+  const std::vector<std::string> expected = workload(plain);
+  std::vector<mpz_class> made_before = start();  // allocated by GMP's default functions
+  if (!use_pooled_gmp_allocation()) GTEST_SKIP() << "no pool in an AddressSanitizer build";
+  const std::vector<std::string> got = workload(made_before);
+  // A block given back is handed out again for the same size: the pool is in use.
+  void* (*alloc)(size_t) = nullptr;
+  void (*release)(void*, size_t) = nullptr;
+  mp_get_memory_functions(&alloc, nullptr, &release);
+  void* block = alloc(3 * sizeof(mp_limb_t));
+  release(block, 3 * sizeof(mp_limb_t));
+  EXPECT_EQ(alloc(3 * sizeof(mp_limb_t)), block);
+  release(block, 3 * sizeof(mp_limb_t));
+  made_before.clear();  // freed by the pool, then by default_free below: both are free()
+  mp_set_memory_functions(default_alloc, default_realloc, default_free);
+  EXPECT_EQ(got, expected);
 }
 
 TEST(OracleKnown, TwoCirclesMeetAtExactlyOneHalf) {
