@@ -527,10 +527,16 @@ template <class B> class RotatingPairPredictor {
     if (r.status == RootStatus::None || !(r.t <= best_.t)) return;
     bool undecided = false;
     if (r.status == RootStatus::Root && !r.at_start_overlap && !r.tangent) {
-      r.t = refine(which, r.t, best_.t);
+      bool loose = false;
+      r.t = refine(which, r.t, best_.t, opt_.correctly_rounded ? nullptr : &loose);
       if (opt_.correctly_rounded) {
         if (const std::optional<B> nearest = round_correctly(which, r.t)) r.t = *nearest;
         else undecided = true;
+      } else if (loose) {
+        // Robust's promise is a few ulps: a slow crossing, placed by the wider type's enclosure
+        // further than that from where the function is certainly negative, takes certified's
+        // rounding where that decides (else it keeps the place: a graze-like crossing).
+        if (const std::optional<B> nearest = round_correctly(which, r.t)) r.t = *nearest;
       }
     }
     if (r.t == best_.t && best_.status == RootStatus::Root) return;  // ties: the first found stays
@@ -544,8 +550,9 @@ template <class B> class RotatingPairPredictor {
   // negative at hi, both evaluated in Certifying<B> from the stored values, then its sign at
   // their middle (exact in that type) decides: positive, the crossing is past the middle (hi);
   // negative, before it (lo). Nothing where a sign stays undecided (a crossing within the
-  // certifying type's rounding of a value of B or of a middle, or a tangency) or the bracket is
-  // not within a few values of t.
+  // certifying type's rounding of a value of B or of a middle, or a tangency), where the
+  // bracket is more than a few values of B from t and the function not certainly decreasing
+  // from t across it, or more than 2^24 values away.
   std::optional<B> round_correctly(const Which& which, const B& t) const {
     using W = typename Certifying<B>::type;
     if constexpr (std::is_void_v<W>) {
@@ -556,22 +563,56 @@ template <class B> class RotatingPairPredictor {
   }
   template <class W> std::optional<B> round_correctly_in(const Which& which, const B& t) const {
     const WaveSum<W> f = wide_function<W>(which);
-    const auto sign = [&](const W& x) { return f(Interval<W>(x)).sign(); };
+    const auto sign = [&](const B& x) { return f(Interval<W>(W(x))).sign(); };
+    const auto nearest = [&](const B& lo, const B& hi) -> std::optional<B> {  // adjacent, + then -
+      const int s_mid = f(Interval<W>(W(lo) + (W(hi) - W(lo)) / W(2))).sign();
+      if (s_mid == 0) return std::nullopt;
+      return s_mid > 0 ? hi : lo;
+    };
+    // Within a few values of B of t: every value's sign, one by one.
     constexpr int kSteps = 4;
     B hi = t;
-    int s_hi = sign(W(hi));
-    for (int k = 0; k < kSteps && s_hi > 0; ++k) s_hi = sign(W(hi = interval_next_up(hi)));
-    if (s_hi >= 0) return std::nullopt;
-    B lo = interval_next_down(hi);
-    int s_lo = sign(W(lo));
-    for (int k = 0; k < kSteps && s_lo < 0; ++k) {
-      hi = lo;
-      s_lo = sign(W(lo = interval_next_down(lo)));
+    int s_hi = sign(hi);
+    for (int k = 0; k < kSteps && s_hi > 0; ++k) s_hi = sign(hi = interval_next_up(hi));
+    if (s_hi == 0) return std::nullopt;
+    if (s_hi < 0) {
+      B lo = interval_next_down(hi);
+      int s_lo = sign(lo);
+      for (int k = 0; k < kSteps && s_lo < 0; ++k) {
+        hi = lo;
+        s_lo = sign(lo = interval_next_down(lo));
+      }
+      if (s_lo == 0) return std::nullopt;
+      if (s_lo > 0) return nearest(lo, hi);
     }
-    if (s_lo <= 0) return std::nullopt;
-    const int s_mid = sign(W(lo) + (W(hi) - W(lo)) / W(2));
-    if (s_mid == 0) return std::nullopt;
-    return s_mid > 0 ? hi : lo;
+    // Farther (a placement in B is off by its enclosure's width over the slope: a few values of
+    // B on a steep crossing, hundreds on a slow one, a bounce at 1e-4 m/s): a value of B on
+    // each side by steps of 1, 2, 4, ... values from t, then adjacent ones by bisection, with
+    // the function certainly decreasing on all of the bracket and t (one crossing, and none
+    // between t and the bracket).
+    constexpr int kDoublings = 24;
+    const int s_t = sign(t);
+    if (s_t == 0) return std::nullopt;
+    B good = t, bad = t;
+    B step = s_t > 0 ? interval_next_up(t) - t : t - interval_next_down(t);
+    for (int k = 0;; ++k) {
+      if (k == kDoublings) return std::nullopt;
+      const B x = s_t > 0 ? t + step : t - step;
+      const int s_x = sign(x);
+      if (s_x == 0) return std::nullopt;
+      (s_x > 0 ? good : bad) = x;
+      if (s_x != s_t) break;
+      step = step * B(2);
+    }
+    if (!f.derivative()(Interval<W>(W(std::min(t, good)), W(std::max(t, bad)))).negative()) return std::nullopt;
+    for (;;) {
+      const B m = good + (bad - good) / B(2);
+      if (!(good < m && m < bad)) break;
+      const int s_m = sign(m);
+      if (s_m == 0) return std::nullopt;
+      (s_m > 0 ? good : bad) = m;
+    }
+    return nearest(good, bad);
   }
 
   // The crossing of `which` at or after t (the first value of B at which its function, built in
@@ -579,28 +620,43 @@ template <class B> class RotatingPairPredictor {
   // value of B at which the function built in the wider type is not certainly positive, by
   // doubling steps from t and bisection. Coefficients built from the stored values in the wider
   // type carry its rounding, not B's, so the place is known to about B's own precision.
-  B refine(const Which& which, const B& t, const B& hi) const {
+  //
+  // With `loose`, also whether the crossing may lie more values of B after the place than robust
+  // promises (promised_rotating_time_error_ulps): the wider type's function not certainly
+  // negative there. On a steep crossing the wider type's enclosure is far narrower than an ulp
+  // of B over the slope; on a slow one (a bounce at 1e-4 m/s) hundreds of values of B wide.
+  B refine(const Which& which, const B& t, const B& hi, bool* loose = nullptr) const {
     using W = typename Wider<B>::type;
     if constexpr (std::is_void_v<W> || std::is_same_v<B, Quad>) {
       return t;
     } else {
       const WaveSum<W> f = wide_function<W>(which);
       const auto positive = [&](const B& x) { return f(Interval<W>(W(x))).positive(); };
-      if (!positive(t)) return t;
-      B good = t, bad = hi, step = interval_next_up(t) - t;
-      for (B x = interval_next_up(t); x < hi; x = t + step) {
-        if (!positive(x)) {
-          bad = x;
-          break;
+      const auto place = [&]() {
+        if (!positive(t)) return t;
+        B good = t, bad = hi, step = interval_next_up(t) - t;
+        for (B x = interval_next_up(t); x < hi; x = t + step) {
+          if (!positive(x)) {
+            bad = x;
+            break;
+          }
+          good = x;
+          step = step * B(2);
         }
-        good = x;
-        step = step * B(2);
+        for (;;) {
+          const B m = good + (bad - good) / B(2);
+          if (!(good < m && m < bad)) return bad;
+          (positive(m) ? good : bad) = m;
+        }
+      };
+      const B placed = place();
+      if (loose) {
+        constexpr long long kPromise = *promised_rotating_time_error_ulps(SolverKind::Robust);
+        B x = placed;
+        for (long long k = 0; k < kPromise; ++k) x = interval_next_up(x);
+        *loose = !f(Interval<W>(W(x))).negative();
       }
-      for (;;) {
-        const B m = good + (bad - good) / B(2);
-        if (!(good < m && m < bad)) return bad;
-        (positive(m) ? good : bad) = m;
-      }
+      return placed;
     }
   }
 
