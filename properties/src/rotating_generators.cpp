@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <ostream>
 #include <string>
 
@@ -247,21 +246,16 @@ std::vector<BodyDesc> corner_on_corner(const SpinSpec& m, double mass) {
 // the wall's line x = s (a segment, or a fixed box's face), or touches a resting ball centred at
 // (s + R, 0), with zero normal speed, and turns away. A kite has that one corner at reach s; a
 // diamond's next corner comes to the line a quarter turn later, a rod's other end half a turn
-// later, at transcendental times: their rates are kept low enough that this happens after the
-// horizon, so that the run holds the one exact tangency (unless SpinGenOptions::known_failures:
-// the next one, after the engine's impulse of rounding size at the first, is a near miss by
-// about 1e-16, which the engine takes for a contact).
+// later, at transcendental times, up to 2 rad/s: after the engine's impulse of rounding size at
+// the exact tangency, that next one may be a near miss by about 1e-16, which the engine once
+// took for a contact (docs/rotation.md, E3; the rates were kept low enough to put it after the
+// horizon until it was fixed).
 std::vector<BodyDesc> graze(const SpinSpec& m, double mass) {
   const auto& p = m.p;
   const Outline o = m.shape < 2 ? Outline::Kite : (m.shape == 2 ? Outline::Diamond : Outline::Rod);
   const Shape sh = shape_of(o, q8(0.5 + 0.25 * p[0]));
   const double s = sh.size, tg = 0.25 * m.tick;
-  // The largest rate (a multiple of 2^-6, at most 2) at which the shape's next corner reaches the
-  // line after the horizon from every t_g >= 1/4: a kite's after a whole turn, a diamond's after a
-  // quarter, a rod's after a half.
-  const double turn = o == Outline::Kite ? 2 * std::numbers::pi : (o == Outline::Diamond ? std::numbers::pi / 2 : std::numbers::pi);
-  const double fastest = m.known_failures ? 2.0 : std::min(2.0, std::floor(turn / (m.until - 0.25) * 64) / 64);
-  const double omega = m.sign * quantize(0.5 + (fastest - 0.5) * mag(p[1]), 6);
+  const double omega = m.sign * quantize(0.5 + 1.5 * mag(p[1]), 6);  // 0.5 to 2 rad/s
   const double vy = q8(0.5 * p[2]);
   std::vector<BodyDesc> out;
   out.push_back(turning_body(sh, {0, -vy * tg}, {0, vy}, mass, -omega * tg, omega));

@@ -54,10 +54,7 @@ struct SpinGenOptions {
   //   - EdgeEnd with the corner landing on the segment's end on its path (at a dyadic time, not
   //     at the start): the same after the landing, in about one scene in 6,000;
   //   - restitution 1/2: two turning bodies that keep meeting chatter, ever slower, until their
-  //     approach is below rounding and the engine repeats zero-impulse contacts at one instant;
-  //   - Graze with a diamond or a rod turning fast enough to bring its next corner back to the
-  //     line within the run: after the engine's impulse of rounding size at the first tangency
-  //     the second is a near miss by 1e-16, which the engine takes for a contact.
+  //     approach is below rounding and the engine repeats zero-impulse contacts at one instant.
   bool known_failures = false;
 };
 

@@ -430,6 +430,13 @@ template <class B> class RotatingPairPredictor {
         }
         root.tangent = false;  // it went below zero: a crossing, at the rounding's place
       }
+      // A tangency the wider type shows to be a near miss is none: the search goes on past it.
+      if (root.tangent && clear_in_wider(which, root.t))
+        if (const std::optional<B> past = past_tangency(gap, root.t, hi)) {
+          rule = StartRule::CrossingsOnly;
+          lo = *past;
+          continue;
+        }
       bool on_edge = true;
       if (f) {
         const Interval<B> along = f->along(Interval<B>(root.t));
@@ -613,6 +620,26 @@ template <class B> class RotatingPairPredictor {
       (s_m > 0 ? good : bad) = m;
     }
     return nearest(good, bad);
+  }
+
+  // Whether the function of `which`, built in the wider type, is certainly positive on the
+  // values of B next to t, a tangency's place (the minimum of a function convex there lies
+  // between two adjacent values of B, t one of them): then the tangency is a near miss closer
+  // than B's rounding, no contact. By the mean-value form about t, f(t) + f'([t-, t+]) ([t-, t+]
+  // - t): f' is near zero there, where the natural enclosure over two ulps of time would spread
+  // f by its slope's terms, far more than such a miss. (A diamond's corner passing a wall 7e-17
+  // off, after an impulse of rounding size at an exact graze, was taken for a contact: docs/
+  // rotation.md, E3.)
+  bool clear_in_wider(const Which& which, const B& t) const {
+    using W = typename Wider<B>::type;
+    if constexpr (std::is_void_v<W> || std::is_same_v<B, Quad>) {
+      return false;
+    } else {
+      const WaveSum<W> f = wide_function<W>(which);
+      const Interval<W> around(W(interval_next_down(t)), W(interval_next_up(t)));
+      const Interval<W> at{W(t)};
+      return (f(at) + f.derivative()(around) * (around - at)).positive();
+    }
   }
 
   // The crossing of `which` at or after t (the first value of B at which its function, built in
