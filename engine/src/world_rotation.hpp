@@ -135,24 +135,11 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   if (!(end > from)) end = std::min(wanted, detail::interval_next_up(from));  // progress, however late the clock
   detail::RotatingOptions options;
   options.correctly_rounded = solver == SolverKind::Certified;
-  // A contact at `from` (touching there, or overlapping) whose points do not approach is no
-  // contact (the predictor searches past it): its impulse would be none, the state would stay
-  // as it is, and the same contact would be found again at once. The translating engine's start
-  // rule asks the same of its contact function (decreasing at the start). Two turning boxes
-  // that bounced face on face with their corners aligned gave 199 zero-impulse events at one
-  // instant without it: a corner sliding away along the other's edge line, its contact function
-  // 0 throughout, found touching at once each time
-  // (fixtures/regressions/rotation/turning-boxes-meet-face-on-face-with-corners-aligned.json).
+  // A contact at `from` whose points do not approach is searched past: it would have no impulse
+  // and be found again at once (RotatingPairPredictor::set_start_test; fixtures/regressions/
+  // rotation/turning-boxes-meet-face-on-face-with-corners-aligned.json).
   const auto approaching_start = [&](const detail::RotatingContact<T>& start) {
-    const PredictedContact<T> p = contact_of(start);
-    Scheduled<T> s;
-    s.time = start.t;
-    s.lo = lo;
-    s.hi = hi;
-    s.contact = p.contact;
-    s.feature_a = p.feature_a;
-    s.feature_b = p.feature_b;
-    return rotating_approaching(s);
+    return rotating_contact_approaching(lo, hi, start);
   };
   const detail::RotatingContact<T> c =
       solver == SolverKind::Fast
@@ -235,10 +222,16 @@ inline auto World<T>::Impl::rotating_geometry(const Scheduled<T>& s, const T& t)
 }
 
 template <class T> inline auto World<T>::Impl::rotating_approaching(const Scheduled<T>& s) const -> bool {
-  const Body& a = bodies[s.lo];
-  const Body& b = bodies[s.hi];
-  const Kinematics<T> ka = kinematics(a, s.time), kb = kinematics(b, s.time);
-  const detail::RotatingGeometry<T> g = rotating_geometry(s, s.time);
+  return rotating_contact_approaching(s.lo, s.hi, rotating_record(s, s.time));
+}
+
+template <class T>
+inline auto World<T>::Impl::rotating_contact_approaching(BodyIndex lo, BodyIndex hi, const detail::RotatingContact<T>& c) const
+    -> bool {
+  const Body& a = bodies[lo];
+  const Body& b = bodies[hi];
+  const Kinematics<T> ka = kinematics(a, c.t), kb = kinematics(b, c.t);
+  const detail::RotatingGeometry<T> g = detail::rotating_contact_geometry(rotating_shape(a), rotating_shape(b), c);
   const T wa = a.rotates ? spin_of(a).omega : T(0), wb = b.rotates ? spin_of(b).omega : T(0);
   const Vec2<T> ua = ka.v + perp(g.arm_a) * wa, ub = kb.v + perp(g.arm_b) * wb;
   return dot(ub - ua, g.normal) < T(0) && dot(g.normal, g.normal) > T(0);

@@ -452,7 +452,7 @@ template <class B> class RotatingPairPredictor {
         // is searched past (see set_start_test). One whose gap goes negative stays: a body
         // starting to rest on a face (a box lying on a floor under gravity) touches without
         // approaching, and resting contact begins at that zero-impulse event.
-        if (root.t == from_ && !approaching_at_start(which, root.t))
+        if (root.t == from_ && !approaching_at_start(which, root))
           if (const std::optional<B> past = past_tangency(gap, root.t, hi)) {
             rule = StartRule::CrossingsOnly;
             lo = *past;
@@ -474,12 +474,12 @@ template <class B> class RotatingPairPredictor {
 
   // The caller's test of a contact at the search's start (set_start_test): whether its points
   // approach, as its impulse would find; every contact passes without one.
-  bool approaching_at_start(const Which& which, const B& t) const {
+  bool approaching_at_start(const Which& which, const WaveRoot<B>& root) const {
     if (!start_test_) return true;
     RotatingContact<B> c;
     c.status = RootStatus::Root;
-    c.t = t;
-    c.at_start_overlap = true;
+    c.t = root.t;
+    c.at_start_overlap = root.at_start_overlap;
     c.feature = which.feature;
     c.point_on_a = which.point_on_a;
     c.point = which.point;
