@@ -156,7 +156,7 @@ TEST(OracleNumbers, PooledGmpAllocationKeepsEveryValue) {
   release(block, 3 * sizeof(mp_limb_t));
   EXPECT_EQ(alloc(3 * sizeof(mp_limb_t)), block);
   release(block, 3 * sizeof(mp_limb_t));
-  made_before.clear();  // freed by the pool, then by default_free below: both are free()
+  made_before.clear();  // given back to the pool, whether GMP's default functions or the pool made them
   mp_set_memory_functions(default_alloc, default_realloc, default_free);
   EXPECT_EQ(got, expected);
 }
