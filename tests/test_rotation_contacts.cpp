@@ -1172,4 +1172,48 @@ TEST(RotationResponse, ASquareLandingFlatBouncesWithoutSpinning) {
   }
 }
 
+TEST(RotationResponse, CornerOnCornerTakesTheConesBisectorAndEntersOnlyInsideIt) {
+  // Two unit diamonds (vertices (1, 0), (0, 1), (-1, 0), (0, -1)), P about (-1, 0) and Q about
+  // (1, 0), both at angle 0 at t = 0: P's vertex 0 is Q's vertex 2, at the origin, the end of
+  // Q's edge 1 (from (1, 1) to (0, 0)). By hand: Q's interior directions there are (1, 1) and
+  // (1, -1), P's reversed are the same two, so the overlap cone is the quarter turn about +x
+  // between them, whose outward normals (-1, -1)/sqrt 2 and (-1, 1)/sqrt 2 bisect to (-sqrt 2, 0)
+  // from Q towards P: the normal from a = P to b = Q is (sqrt 2, 0), y exactly 0. The relative
+  // motion of the two tips enters the cone iff it lies strictly within 45 degrees of +x.
+  using namespace pge::detail;
+  const std::vector<V> diamond{{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+  struct Case {
+    V vp;
+    double wp;
+    bool enters;
+  };
+  // (2, 0): head on. (0, 2): sliding past. (1, 0) with spin 3: the tip moves at (1, 3), 71.6
+  // degrees off +x. (1, 0) with spin 0.5: (1, 0.5), 26.6 degrees.
+  for (const Case& k : {Case{{2, 0}, 0, true}, Case{{0, 2}, 0, false}, Case{{1, 0}, 3, false}, Case{{1, 0}, 0.5, true}}) {
+    Shape p, q;
+    p.path = {0, {-1, 0}, k.vp, {0, 0}, 0, k.wp};
+    q.path = {0, {1, 0}, {0, 0}, {0, 0}, 0, 0};
+    p.vertices = diamond;
+    q.vertices = diamond;
+    p.reach = q.reach = 1;
+    RotatingContact<double> c;
+    c.status = RootStatus::Root;
+    c.t = 0;
+    c.feature = RotatingFeature::VertexEdge;
+    c.point_on_a = true;
+    c.point = 0;
+    c.edge = 1;
+    const RotatingGeometry<double> g = rotating_contact_geometry(p, q, c);
+    EXPECT_TRUE(g.corner);
+    EXPECT_EQ(g.enters, k.enters) << k.vp.x << " " << k.vp.y << " " << k.wp;
+    EXPECT_NEAR(g.normal.x, std::sqrt(2.0), 4 * kEps);
+    EXPECT_EQ(g.normal.y, 0.0);
+    // Without the corner rule (the fast solver's geometry): edge 1's outward normal (-1, 1),
+    // from Q towards P, reversed to run from a = P to b = Q.
+    const RotatingGeometry<double> edge = rotating_contact_geometry(p, q, c, false);
+    EXPECT_FALSE(edge.corner);
+    EXPECT_EQ(edge.normal.x, -edge.normal.y);
+  }
+}
+
 }  // namespace

@@ -41,6 +41,7 @@ template <class T> struct PredictedContact {
   bool corner = false;  // a vertex against an edge's end: the corner rule decides the normal
   bool rotating = false;  // a pair with a rotating body (world_rotation.hpp): no exact refinement
   bool resume = false;    // rotating: no contact before `time`, predict again then (Scheduled::resume)
+  bool at_start = false;  // rotating: found at its search's start, so `time` is exact (RotatingContact)
 
   bool before(const PredictedContact& o) const {
     if (time != o.time) return time < o.time;

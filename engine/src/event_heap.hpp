@@ -33,6 +33,9 @@ template <class T> struct Scheduled {
   // Not a contact: the rotating predictor's search for this pair ran out of its box budget
   // (world_rotation.hpp); nothing touches before `time`, where the owner is predicted again.
   bool resume = false;
+  // Rotating: found at its search's start, so `time` is the contact's exact time
+  // (detail::RotatingContact::at_start, the corner rule's).
+  bool at_start = false;
 
   bool valid() const { return lo != kNoBody; }
 

@@ -149,6 +149,7 @@ inline auto World<T>::Impl::scheduled(const PredictedContact<T>& c, BodyIndex lo
   if (c.rotating) {
     s.refined = true;  // the exact refinement is the translate-only paths'; see world_rotation.hpp
     s.resume = c.resume;
+    s.at_start = c.at_start;
   }
   return s;
 }

@@ -138,9 +138,7 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   // A contact at `from` whose points do not approach is searched past: it would have no impulse
   // and be found again at once (RotatingPairPredictor::set_start_test; fixtures/regressions/
   // rotation/turning-boxes-meet-face-on-face-with-corners-aligned.json).
-  const auto approaching_start = [&](const detail::RotatingContact<T>& start) {
-    return rotating_contact_approaching(lo, hi, start);
-  };
+  const auto approaching_start = [&](const detail::RotatingContact<T>& start) { return rotating_start_contact(lo, hi, start); };
   const detail::RotatingContact<T> c =
       solver == SolverKind::Fast
           ? detail::predict_rotating_pair_fast(sa, sb, from, end)
@@ -165,6 +163,7 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   }
   clear = c.t;
   if (c.t > horizon) return std::nullopt;
+  out.at_start = c.at_start;
   const PredictedContact<T> features = contact_of(c);
   out.contact = features.contact;
   out.feature_a = features.feature_a;
@@ -198,6 +197,7 @@ inline auto World<T>::Impl::rotating_record(const Scheduled<T>& s, const T& t) c
   detail::RotatingContact<T> c;
   c.status = RootStatus::Root;
   c.t = t;
+  c.at_start = s.at_start && t == s.time;
   switch (s.contact) {
     case ContactKind::VertexEdge:
     case ContactKind::EdgeVertex:
@@ -218,23 +218,27 @@ inline auto World<T>::Impl::rotating_record(const Scheduled<T>& s, const T& t) c
 
 template <class T>
 inline auto World<T>::Impl::rotating_geometry(const Scheduled<T>& s, const T& t) const -> detail::RotatingGeometry<T> {
-  return detail::rotating_contact_geometry(rotating_shape(bodies[s.lo]), rotating_shape(bodies[s.hi]), rotating_record(s, t));
+  return detail::rotating_contact_geometry(rotating_shape(bodies[s.lo]), rotating_shape(bodies[s.hi]), rotating_record(s, t),
+                                           solver != SolverKind::Fast);
 }
 
 template <class T> inline auto World<T>::Impl::rotating_approaching(const Scheduled<T>& s) const -> bool {
-  return rotating_contact_approaching(s.lo, s.hi, rotating_record(s, s.time));
+  return rotating_start_contact(s.lo, s.hi, rotating_record(s, s.time)) == detail::StartContact::Collides;
 }
 
 template <class T>
-inline auto World<T>::Impl::rotating_contact_approaching(BodyIndex lo, BodyIndex hi, const detail::RotatingContact<T>& c) const
-    -> bool {
+inline auto World<T>::Impl::rotating_start_contact(BodyIndex lo, BodyIndex hi, const detail::RotatingContact<T>& c) const
+    -> detail::StartContact {
   const Body& a = bodies[lo];
   const Body& b = bodies[hi];
   const Kinematics<T> ka = kinematics(a, c.t), kb = kinematics(b, c.t);
-  const detail::RotatingGeometry<T> g = detail::rotating_contact_geometry(rotating_shape(a), rotating_shape(b), c);
+  const detail::RotatingGeometry<T> g =
+      detail::rotating_contact_geometry(rotating_shape(a), rotating_shape(b), c, solver != SolverKind::Fast);
   const T wa = a.rotates ? spin_of(a).omega : T(0), wb = b.rotates ? spin_of(b).omega : T(0);
   const Vec2<T> ua = ka.v + perp(g.arm_a) * wa, ub = kb.v + perp(g.arm_b) * wb;
-  return dot(ub - ua, g.normal) < T(0) && dot(g.normal, g.normal) > T(0);
+  if (!g.enters) return detail::StartContact::PassesCorner;
+  return dot(ub - ua, g.normal) < T(0) && dot(g.normal, g.normal) > T(0) ? detail::StartContact::Collides
+                                                                         : detail::StartContact::Touches;
 }
 
 template <class T> inline auto World<T>::Impl::collide_rotating(const Scheduled<T>& s) -> void {
@@ -248,6 +252,7 @@ template <class T> inline auto World<T>::Impl::collide_rotating(const Scheduled<
 
   CollisionInfo<T> info = collision_info(s, ka, kb);
   info.point = g.point;
+  info.corner = g.corner;
   const auto spin = [&](const Body& x) { return x.rotates ? spin_of(x).omega : T(0); };
   const auto inv_inertia = [&](const Body& x) { return x.rotates ? spin_of(x).inv_inertia : T(0); };
   info.wa_before = spin(a);
@@ -263,7 +268,9 @@ template <class T> inline auto World<T>::Impl::collide_rotating(const Scheduled<
   detail::RigidState<T> ra{ka.v, spin(a), a.inv_mass, inv_inertia(a)};
   detail::RigidState<T> rb{kb.v, spin(b), b.inv_mass, inv_inertia(b)};
   const T e = std::min(a.restitution, b.restitution);
-  const detail::Impulse<T> j = detail::apply_rigid_impulse_with_arms(ra, g.arm_a, rb, g.arm_b, n, e);
+  // A corner whose relative motion does not enter the overlap cone passes or leaves: no impulse.
+  detail::Impulse<T> j;
+  if (g.enters) j = detail::apply_rigid_impulse_with_arms(ra, g.arm_a, rb, g.arm_b, n, e);
   info.normal = n_len > T(0) ? n * (T(1) / n_len) : n;
   info.approach_speed = n_len > T(0) ? -j.v_n / n_len : T(0);
   if (j.applied) {

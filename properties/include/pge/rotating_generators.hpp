@@ -47,10 +47,10 @@ struct SpinGenOptions {
   std::uint64_t max_events = 200;
   std::uint32_t motif_mask = ~0u;   // bit k allows SpinMotif k (spin_motif_bit)
   // What the engine is known to fail (docs/rotation.md, "Known failures"), off by default:
-  //   - CornerOnCorner: the engine has no corner rule for turning bodies, so a vertex meeting a
-  //     vertex takes one edge's normal, and the contacts that follow at the same instant are
-  //     decided by rounding, which the referee, deciding exactly, finds to be phantoms and time
-  //     errors;
+  //   - CornerOnCorner: with the corner rule for turning bodies (E1) the property still fails
+  //     within about a hundred such scenes (docs/rotation.md): two rods meeting end to end chatter at one instant (a miss or a time error to the
+  //     referee), and two polygons meeting corner on corner far from the origin lose that contact
+  //     to the support pruning (E5, a miss);
   //   - EdgeEnd with the corner landing on the segment's end on its path (at a dyadic time, not
   //     at the start): the same after the landing, in about one scene in 6,000;
   //   - restitution 1/2: two turning bodies that keep meeting chatter, ever slower, until their

@@ -31,6 +31,7 @@
 #pragma once
 
 #include "pge/detail/contact_rotating.hpp"
+#include "pge/detail/corner.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -43,6 +44,14 @@
 #include <type_traits>
 
 namespace pge::detail {
+
+template <class B> struct RotatingShape;
+
+// A stored path's values in a wider type W (exactly: W holds every value of B).
+template <class W, class B> StoredPath<W> widened_path(const StoredPath<B>& p) {
+  const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
+  return {W(p.t0), v(p.p0), v(p.v0), v(p.a), W(p.theta0), W(p.omega)};
+}
 
 template <class B> struct RotatingShape {
   StoredPath<B> path;
@@ -59,6 +68,9 @@ template <class B> struct RotatingContact {
   B t{};  // Root: the contact; Undecided: no contact is known before t; None: the window's end
   bool at_start_overlap = false;
   bool tangent = false;
+  // Found at the search's start (t is where the search began): touching or overlapping there, so
+  // t is the contact's exact time, not a rounding of it (corner_rule).
+  bool at_start = false;
   RotatingFeature feature = RotatingFeature::VertexEdge;
   bool point_on_a = false;       // the vertex (or the circle) belongs to a; the edge (or vertex) to b
   std::size_t point = 0, edge = 0;  // the vertex index (VertexEdge); the edge index (k: vertex k to k + 1) or vertex
@@ -105,6 +117,14 @@ std::optional<WaveRoot<B>> bounding_circles_meet(const RotatingShape<B>& a, cons
   return earliest_wave_root(reach, lo, hi, StartRule::CrossingsOnly, max_boxes);
 }
 
+// What the caller's impulse test makes of a contact at the search's start (set_start_test).
+enum class StartContact : std::uint8_t {
+  Collides,      // its points approach: an impulse
+  Touches,       // they do not (no impulse): searched past unless its gap goes certainly negative first
+  PassesCorner,  // a vertex meeting a vertex whose relative motion does not enter the overlap cone
+                 // (the corner rule): searched past whichever way its gap goes
+};
+
 template <class B> class RotatingPairPredictor {
  public:
   RotatingPairPredictor(const RotatingShape<B>& a, const RotatingShape<B>& b, StartRule rule, RotatingOptions opt)
@@ -115,7 +135,7 @@ template <class B> class RotatingPairPredictor {
   // unless its gap goes certainly negative first. The engine asks its impulse test here: a
   // contact at the start without an impulse leaves the state as it is, and would be found
   // again at once, for ever.
-  void set_start_test(std::function<bool(const RotatingContact<B>&)> test) { start_test_ = std::move(test); }
+  void set_start_test(std::function<StartContact(const RotatingContact<B>&)> test) { start_test_ = std::move(test); }
 
   RotatingContact<B> earliest(const B& lo, const B& hi) {
     origin_ = lo;
@@ -446,19 +466,38 @@ template <class B> class RotatingPairPredictor {
           behind_segment(P, sp, Q, sq, which.edge, root.t))
         on_edge = false;
       if (on_edge && (!root.at_start_overlap ||
-                      (possibly_inside(P, r, rho, Q, sq, root.t) && (!f || possibly_shallowest(P, r, rho, Q, sq, which.edge, root.t))))) {
+                      (possibly_inside(P, r, rho, Q, sq, root.t) && (!f || possibly_shallowest(P, r, rho, Q, sq, which.edge, root.t)) &&
+                       (which.feature != RotatingFeature::VertexEdge ||
+                        !other_outline_axis_shallower(P, sp, Q, sq, which.point, which.edge, root.t))))) {
         // A contact at the start whose points do not approach, and whose gap does not go
         // certainly negative before it goes certainly positive or rising (or the window ends),
         // is searched past (see set_start_test). One whose gap goes negative stays: a body
         // starting to rest on a face (a box lying on a floor under gravity) touches without
         // approaching, and resting contact begins at that zero-impulse event.
-        if (root.t == from_ && !approaching_at_start(which, root))
-          if (const std::optional<B> past = past_tangency(gap, root.t, hi)) {
-            rule = StartRule::CrossingsOnly;
-            lo = *past;
-            continue;
+        // Placed first (refine): a root at the start may be placed later by the wider type,
+        // and the tests below are of the contact where it is placed.
+        if (!(root.t <= best_.t)) return;
+        bool undecided = false;
+        place(root, which, undecided);
+        // A corner passed, not entered (the corner rule), is searched past either way, at the
+        // start or later (its gap may fall through zero beyond the edge's end).
+        const bool at_start = root.t == from_;
+        if (at_start || which.feature == RotatingFeature::VertexEdge) {
+          const StartContact test = contact_test(which, root);
+          if (test == StartContact::PassesCorner || (at_start && test == StartContact::Touches)) {
+            if (const std::optional<B> past = past_tangency(gap, root.t, hi)) {
+              rule = StartRule::CrossingsOnly;
+              lo = *past;
+              continue;
+            }
+            if (test == StartContact::PassesCorner) {
+              rule = StartRule::CrossingsOnly;
+              lo = past_crossing(gap, root.t, hi);
+              continue;
+            }
           }
-        take(root, which);
+        }
+        keep(root, which, undecided);
         return;
       }
       rule = StartRule::CrossingsOnly;
@@ -472,14 +511,15 @@ template <class B> class RotatingPairPredictor {
     search(f.gap, &f, P, sp, r, rho, Q, sq, lo, until, which);
   }
 
-  // The caller's test of a contact at the search's start (set_start_test): whether its points
-  // approach, as its impulse would find; every contact passes without one.
-  bool approaching_at_start(const Which& which, const WaveRoot<B>& root) const {
-    if (!start_test_) return true;
+  // The caller's test of a contact (set_start_test), as its impulse would find; every contact
+  // collides without one.
+  StartContact contact_test(const Which& which, const WaveRoot<B>& root) const {
+    if (!start_test_) return StartContact::Collides;
     RotatingContact<B> c;
     c.status = RootStatus::Root;
     c.t = root.t;
     c.at_start_overlap = root.at_start_overlap;
+    c.at_start = root.t == from_;
     c.feature = which.feature;
     c.point_on_a = which.point_on_a;
     c.point = which.point;
@@ -517,6 +557,31 @@ template <class B> class RotatingPairPredictor {
     return true;
   }
 
+  // The overlap rule between two outlines, as the referee has it (every edge line of either
+  // outline is an axis, its depth the least signed distance of the other outline's vertices from
+  // it): whether an edge of P is certainly shallower than vertex `point`'s depth behind Q's edge
+  // `edge` (possibly_shallowest compares Q's edges). Without it, two triangles left overlapping by
+  // rounding apex in apex after a corner impulse struck apex against edge with the edges' normals
+  // at one instant, a storm, where the referee found P's edge the least penetrated.
+  static bool other_outline_axis_shallower(const PathAt<B>& P, const RotatingShape<B>& sp, const PathAt<B>& Q,
+                                           const RotatingShape<B>& sq, std::size_t point, std::size_t edge, const B& t) {
+    const std::size_t np = sp.vertices.size(), nq = sq.vertices.size();
+    const Interval<B> at(t);
+    const FeatureFunctions<B> own =
+        point_edge_functions(P, sp.vertices[point], B(0), Q, sq.vertices[edge], sq.vertices[(edge + 1) % nq]);
+    const Interval<B> mine = own.gap(at), mine_length = own.length_sq.sqrt();
+    for (std::size_t k = 0; k < np; ++k) {
+      bool shallower = true;
+      for (std::size_t j = 0; j < nq && shallower; ++j) {
+        const FeatureFunctions<B> f = point_edge_functions(Q, sq.vertices[j], B(0), P, sp.vertices[k], sp.vertices[(k + 1) % np]);
+        // Distances, compared crosswise: gap_j / |e_k| > mine / |e_edge|.
+        if (!((f.gap(at) * mine_length).lo() > (mine * f.length_sq.sqrt()).hi())) shallower = false;
+      }
+      if (shallower) return true;
+    }
+    return false;
+  }
+
   bool possibly_inside(const PathAt<B>& P, const Vec2<B>& r, const B& rho, const PathAt<B>& Q,
                        const RotatingShape<B>& sq, const B& t) const {
     const std::size_t nq = sq.vertices.size();
@@ -533,6 +598,13 @@ template <class B> class RotatingPairPredictor {
   void take(WaveRoot<B> r, const Which& which) {
     if (r.status == RootStatus::None || !(r.t <= best_.t)) return;
     bool undecided = false;
+    place(r, which, undecided);
+    keep(r, which, undecided);
+  }
+
+  // A crossing found by the search, placed again (refine; certified: round_correctly, else
+  // `undecided`). A root at the start in overlap or a tangency keeps its place.
+  void place(WaveRoot<B>& r, const Which& which, bool& undecided) const {
     if (r.status == RootStatus::Root && !r.at_start_overlap && !r.tangent) {
       bool loose = false;
       r.t = refine(which, r.t, best_.t, opt_.correctly_rounded ? nullptr : &loose);
@@ -546,9 +618,15 @@ template <class B> class RotatingPairPredictor {
         if (const std::optional<B> nearest = round_correctly(which, r.t)) r.t = *nearest;
       }
     }
+  }
+
+  // Keeps a placed result if it is the earliest.
+  void keep(const WaveRoot<B>& r, const Which& which, bool undecided) {
+    if (r.status == RootStatus::None || !(r.t <= best_.t)) return;
     if (r.t == best_.t && best_.status == RootStatus::Root) return;  // ties: the first found stays
-    best_ = {r.status, r.t, r.at_start_overlap, r.tangent, which.feature, which.point_on_a, which.point, which.edge,
-             best_.boxes, undecided};
+    const bool at_start = r.status == RootStatus::Root && r.t == from_;
+    best_ = {r.status, r.t, r.at_start_overlap, r.tangent, at_start, which.feature, which.point_on_a, which.point,
+             which.edge, best_.boxes, undecided};
   }
 
   // The value of B nearest to the downward crossing placed at t (the first value of B at which
@@ -687,16 +765,11 @@ template <class B> class RotatingPairPredictor {
     }
   }
 
-  template <class W> static StoredPath<W> widen_path(const StoredPath<B>& p) {
-    const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
-    return {W(p.t0), v(p.p0), v(p.v0), v(p.a), W(p.theta0), W(p.omega)};
-  }
-
   // The function of `which` in W, from the search's origin, the stored values converted exactly.
   template <class W> WaveSum<W> wide_function(const Which& which) const {
     const RotatingShape<B>& sp = which.point_on_a ? a_ : b_;
     const RotatingShape<B>& sq = which.point_on_a ? b_ : a_;
-    const PathAt<W> P = path_at(widen_path<W>(sp.path), W(origin_)), Q = path_at(widen_path<W>(sq.path), W(origin_));
+    const PathAt<W> P = path_at(widened_path<W>(sp.path), W(origin_)), Q = path_at(widened_path<W>(sq.path), W(origin_));
     const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
     const std::size_t n = sq.vertices.size();
     const Vec2<W> q = v(sq.vertices[which.edge]);
@@ -710,7 +783,7 @@ template <class B> class RotatingPairPredictor {
   StartRule rule_, rule_now_ = StartRule::CrossingsOnly;
   B from_{};  // where the feature searches start (rule_now_ holds there)
   RotatingOptions opt_;
-  std::function<bool(const RotatingContact<B>&)> start_test_;
+  std::function<StartContact(const RotatingContact<B>&)> start_test_;
   RotatingContact<B> best_;
   B origin_{};
   // The fastest any point of one shape closes on the other over the search's window (advance);
@@ -728,7 +801,9 @@ template <class B> class RotatingPairPredictor {
 
 // Where and along which normal two shapes touch at a predicted contact (double geometry at the
 // contact's time, for the response): the point, the normal from a to b (any length), and
-// whether it is a face on a face.
+// whether it is a face on a face; with `corners`, the corner rule (robust and certified: the
+// fast solver, a game engine's contrast, strikes the edge's normal and has no test that would
+// search past a corner it passes, which it would then meet again and again).
 //
 // Face on face. When the vertex's neighbour along its own outline cannot be told from touching
 // the same edge at that time either (its gap's enclosure is not certainly positive: the struck
@@ -749,10 +824,21 @@ template <class B> class RotatingPairPredictor {
 // moves the impulse's angular terms, so the arm need not end on the edge's line. World
 // coordinates would round the arm at the scale of the positions (1e-10 of an arm at 1e6 from
 // the origin), and the middle of a box landing flat an ulp off its centre, setting it spinning.
+//
+// Corners (E1 in docs/rotation.md). A vertex struck at an end of the edge (within the corner
+// slack, pge/detail/corner.hpp) meets the vertex there: the translating engine's corner rule
+// with the directions turned to the contact's angles and the velocities and accelerations of
+// the two material points that meet (the centres' plus the turns'). The contact collides only if
+// the relative motion enters the overlap cone (`enters`), and along the cone's bisector, not the
+// struck edge's normal: with the edge's normal a corner struck corner on corner kept
+// approaching the other edge there, 1e-16 behind its line, and rounding chose which edge struck
+// next at the same instant.
 template <class B> struct RotatingGeometry {
   Vec2<B> point, normal;
   Vec2<B> arm_a, arm_b;  // point - centre of a, of b
   bool face_on_face = false;
+  bool corner = false;   // a vertex meeting a vertex: the normal is the corner's
+  bool enters = true;    // a corner: whether the relative motion enters the overlap cone
 };
 
 template <class B> Vec2<B> centre_at(const StoredPath<B>& p, const B& t) {
@@ -762,9 +848,117 @@ template <class B> Vec2<B> centre_at(const StoredPath<B>& p, const B& t) {
 
 template <class B> B angle_at(const StoredPath<B>& p, const B& t) { return p.theta0 + p.omega * (t - p.t0); }
 
+// The size of the two shapes' coordinates at t (their centres' plus their reaches): the scale of
+// the rounding of a world position computed from them.
+template <class B> B coordinate_scale(const RotatingShape<B>& sp, const RotatingShape<B>& sq, const B& t) {
+  using std::abs;
+  const auto size = [&](const RotatingShape<B>& s) {
+    const Vec2<B> c = centre_at(s.path, t);
+    return std::max(abs(c.x), abs(c.y)) + s.reach;
+  };
+  return std::max(size(sp), size(sq));
+}
+
+// The corner slack (constants.hpp) in the units of a vertex's contact function (its distance
+// from the edge's line times |e|; ee = e.e): what rounding may put between two points on a line.
+template <class B> B corner_tolerance(const RotatingShape<B>& sp, const RotatingShape<B>& sq, const B& t, const B& ee) {
+  using std::sqrt;
+  return B(kCornerSlackUlps) * std::numeric_limits<B>::epsilon() * coordinate_scale(sp, sq, t) * ee / B(sqrt(ee));
+}
+
+// Whether vertex `point` of P, touching Q's edge `edge` at t, meets it strictly inside the edge,
+// decided from the stored paths (enclosed in B, then, where that cannot tell, in W): its place
+// along the edge at t, in (0, e.e) by more than the slide `u` (the points' relative velocity,
+// world; e the edge, world) gives it before the gap closes. Behind the line at t (an overlap)
+// the place at t itself; in front of it or on it within rounding, the crossing is up to
+// |gap| / |u x e| later, |u.e| |gap| / |u x e| further along (in the functions' units).
+template <class W, class B>
+bool meets_inside_edge(const RotatingShape<B>& sp, const RotatingShape<B>& sq, std::size_t point, std::size_t edge,
+                       const B& t, const Vec2<B>& u, const Vec2<B>& e) {
+  using std::abs;
+  const std::size_t n = sq.vertices.size();
+  const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
+  const PathAt<W> P = path_at(widened_path<W>(sp.path), W(t)), Q = path_at(widened_path<W>(sq.path), W(t));
+  const FeatureFunctions<W> f =
+      point_edge_functions(P, v(sp.vertices[point]), W(0), Q, v(sq.vertices[edge]), v(sq.vertices[(edge + 1) % n]));
+  const Interval<W> at{W(t)};
+  const Interval<W> along = f.along(at), gap = f.gap(at);
+  W margin(0);
+  if (!gap.negative()) {
+    const W across = W(abs(cross(u, e)));
+    if (!(across > W(0))) return false;
+    const W size = std::max(abs(gap.lo()), abs(gap.hi()));
+    // Twice the slide: u and e are B's roundings, and so is this quotient.
+    margin = W(2) * size * W(abs(dot(u, e))) / across;
+  }
+  return (along - Interval<W>(margin)).positive() && (along + Interval<W>(margin) - f.length_sq).negative();
+}
+template <class B>
+bool strictly_inside_edge(const RotatingShape<B>& sp, const RotatingShape<B>& sq, std::size_t point, std::size_t edge,
+                          const B& t, const Vec2<B>& u, const Vec2<B>& e) {
+  if (meets_inside_edge<B>(sp, sq, point, edge, t, u, e)) return true;
+  using W = typename Certifying<B>::type;
+  if constexpr (std::is_void_v<W>) {
+    return false;
+  } else {
+    return meets_inside_edge<W>(sp, sq, point, edge, t, u, e);
+  }
+}
+
+// The corner rule at vertex `point` of P struck at an end of Q's edge `edge` (qa to qb, world):
+// whether the vertex is within the corner slack of an end and, if so, the corner's normal (from
+// Q towards P) and whether the relative motion enters the overlap cone. `arm_p` and `arm_q` are
+// the vertex relative to P's and Q's centres.
+//
+// A contact at its search's start (at_start: t is its exact time) is first placed on the edge by
+// its exact paths, as the referee places it (a contact point strictly inside the edge is an edge
+// contact, whatever the slack says): the place along the edge enclosed in B, then in the
+// certifying type; only a place these cannot tell from the end takes the corner rule. (A
+// diamond's corner struck corner on corner on a floor's end lay 3e-17 inside the floor after the
+// impulse, moving down: the exact paths touch there and approach, a collision the corner rule,
+// which saw the corner leaving past the end, had skipped: the referee's immediate contact.)
+template <class B>
+void corner_rule(const RotatingShape<B>& sp, const RotatingShape<B>& sq, std::size_t point, std::size_t edge, const B& t,
+                 bool at_start, const Vec2<B>& qa, const Vec2<B>& qb, const Vec2<B>& arm_p, const Vec2<B>& arm_q,
+                 Vec2<B>& out, RotatingGeometry<B>& g) {
+  using std::sqrt;
+  const B tp = angle_at(sp.path, t), tq = angle_at(sq.path, t);
+  const Vec2<B> cp = centre_at(sp.path, t);
+  // The material points' velocities and accelerations: the centre's plus the turn's.
+  const auto velocity = [&](const StoredPath<B>& p, const Vec2<B>& arm) { return p.v0 + p.a * (t - p.t0) + perp(arm) * p.omega; };
+  const auto acceleration = [&](const StoredPath<B>& p, const Vec2<B>& arm) { return p.a - arm * (p.omega * p.omega); };
+  const Vec2<B> u = velocity(sp.path, arm_p) - velocity(sq.path, arm_q);
+  const Vec2<B> acc = acceleration(sp.path, arm_p) - acceleration(sq.path, arm_q);
+  const Vec2<B> e = qb - qa;
+  if (at_start && strictly_inside_edge(sp, sq, point, edge, t, u, e)) return;
+  const B scale = coordinate_scale(sp, sq, t);
+  const Vec2<B> d = cp + arm_p - qa;
+  const B len = sqrt(dot(e, e));
+  const EdgeSpot spot = locate_on_edge(d, u, e, len, scale);
+  if (spot != EdgeSpot::Start && spot != EdgeSpot::End) return;
+  // Inside the edge by the slack unwidened: a face contact (as in the translating rule, which
+  // says why).
+  if (locate_on_edge(d, Vec2<B>{}, e, len, scale) == EdgeSpot::Interior) return;
+  const std::size_t w = spot == EdgeSpot::End ? (edge + 1) % sq.vertices.size() : edge;
+  // An outline's interior directions at vertex i, turned: back along the edge arriving there and
+  // along the edge leaving it (one direction twice at a segment's end).
+  const auto interior = [](const RotatingShape<B>& s, std::size_t i, const B& angle) {
+    const std::size_t count = s.vertices.size();
+    const Vec2<B>& v = s.vertices[i];
+    return std::array<Vec2<B>, 2>{rotated(angle, s.vertices[(i + count - 1) % count] - v),
+                                  rotated(angle, s.vertices[(i + 1) % count] - v)};
+  };
+  const std::array<Vec2<B>, 2> q = interior(sq, w, tq), p = interior(sp, point, tp);
+  const std::optional<Cone<B>> cone = overlap_cone_of(q[0], q[1], p[0], p[1]);
+  if (!cone) return;
+  g.corner = true;
+  g.enters = enters_cone(*cone, u, acc);
+  out = corner_normal(*cone);
+}
+
 template <class B>
 RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const RotatingShape<B>& b,
-                                              const RotatingContact<B>& c) {
+                                              const RotatingContact<B>& c, bool corners = true) {
   const RotatingShape<B>& sp = c.point_on_a ? a : b;
   const RotatingShape<B>& sq = c.point_on_a ? b : a;
   const Vec2<B> cp = centre_at(sp.path, c.t), cq = centre_at(sq.path, c.t);
@@ -805,8 +999,12 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
             point_edge_functions(P, sp.vertices[j], B(0), Q, sq.vertices[c.edge], sq.vertices[(c.edge + 1) % n]);
         const Interval<B> along = f.along(at), gap = f.gap(at);
         // Touching the line, or no farther from it than the struck vertex (a certified time
-        // rounded to the double before the crossing: both an ulp's travel short of the line).
-        if ((gap.positive() && (gap - struck).positive()) || along.hi() < B(0) || along.lo() > f.length_sq.hi())
+        // rounded to the double before the crossing: both an ulp's travel short of the line),
+        // nor deeper behind it than the struck vertex by more than rounding (a triangle's apex
+        // struck apex on apex meets the end of the other's far edge too, whose line its
+        // neighbour lies a body's depth behind: not a face on that face).
+        if ((gap.positive() && (gap - struck).positive()) || gap.hi() < struck.lo() - corner_tolerance(sp, sq, c.t, ee) ||
+            along.hi() < B(0) || along.lo() > f.length_sq.hi())
           continue;
         // Both on the edge's line: the middle of their stretch along it, clamped to the edge.
         const Vec2<B> other = cp + rotated(tp, sp.vertices[j]);
@@ -819,6 +1017,7 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
         g.face_on_face = true;
         break;
       }
+      if (corners && !g.face_on_face) corner_rule(sp, sq, c.point, c.edge, c.t, c.at_start, qa, qb, arm_p, centres + arm_p, out, g);
     }
     arm_q = centres + arm_p;
   }
@@ -831,7 +1030,7 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
 template <class B>
 RotatingContact<B> predict_rotating_pair(const RotatingShape<B>& a, const RotatingShape<B>& b, const B& lo, const B& hi,
                                          StartRule rule, RotatingOptions opt = {},
-                                         std::type_identity_t<std::function<bool(const RotatingContact<B>&)>> start_test = {}) {
+                                         std::type_identity_t<std::function<StartContact(const RotatingContact<B>&)>> start_test = {}) {
   RotatingPairPredictor<B> p(a, b, rule, opt);
   p.set_start_test(std::move(start_test));
   return p.earliest(lo, hi);
