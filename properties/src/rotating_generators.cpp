@@ -290,7 +290,7 @@ rc::Gen<SpinMotif> gen_spin_motif_kind(const SpinGenOptions& o) {
   std::vector<SpinMotif> allowed;
   for (int k = 0; k < static_cast<int>(SpinMotif::Count); ++k) {
     const auto m = static_cast<SpinMotif>(k);
-    if ((o.motif_mask & spin_motif_bit(m)) != 0 && (o.known_failures || !known_to_fail(m))) allowed.push_back(m);
+    if ((o.motif_mask & spin_motif_bit(m)) != 0) allowed.push_back(m);
   }
   if (allowed.empty()) allowed.push_back(SpinMotif::Spinner);
   return one_of(std::move(allowed));
@@ -331,8 +331,6 @@ std::string_view spin_motif_name(SpinMotif m) {
 }
 
 bool is_degenerate(SpinMotif m) { return m != SpinMotif::Spinner && m != SpinMotif::Turnstile; }
-
-bool known_to_fail(SpinMotif m) { return m == SpinMotif::CornerOnCorner; }
 
 bool SpinScene::degenerate() const { return std::any_of(motifs.begin(), motifs.end(), is_degenerate); }
 

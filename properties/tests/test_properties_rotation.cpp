@@ -321,8 +321,8 @@ TEST(RotatingOracleProperties, NoContactOverlapsBeyondTheBound) {
 
 // --- The generators. --------------------------------------------------------------------------
 
-// Every motif is generated (the classification shows each one's share; CornerOnCorner included,
-// which the properties above leave out: SpinGenOptions::known_failures), every scene is valid, and every turning
+// Every motif is generated (the classification shows each one's share; with
+// SpinGenOptions::known_failures, which the properties above leave out), every scene is valid, and every turning
 // moving body turns about its reference point (its centroid is exactly its position), which is
 // what keeps the placements at dyadic times exact.
 RC_GTEST_PROP(RotatingGenerators, CoverEveryMotifWithValidExactScenes, ()) {
@@ -364,8 +364,8 @@ TEST(RotatingRegressions, PropertiesHoldOnEveryFixedScene) {
 }
 
 // Property 1 with what the engine is known to fail (SpinGenOptions::known_failures,
-// docs/rotation.md, "Known failures"): corner on corner, a corner landing on a segment's end,
-// restitution 1/2 (chattering turning bodies), a diamond or rod coming back to a line it grazed.
+// docs/rotation.md, "Known failures"): a corner landing on a segment's end on its path,
+// restitution 1/2 (chattering turning bodies).
 // Disabled: run it to see whether a change to the engine fixed them.
 TEST(RotatingOracleProperties, DISABLED_KnownFailures) {
   SpinGenOptions o;

@@ -461,6 +461,10 @@ template <class B> class RotatingPairPredictor {
       if (f) {
         const Interval<B> along = f->along(Interval<B>(root.t));
         on_edge = along.hi() >= B(0) && along.lo() <= f->length_sq.hi();
+        // At a corner met exactly (corner on corner, on a mirror at x = 76) the point at root.t,
+        // a few ulps early, was certainly short of the edge's end for every feature pair there,
+        // and the contact was missed (docs/rotation.md, E5): the span of the crossing decides.
+        if (!on_edge && !root.at_start_overlap) on_edge = crossing_may_be_on_edge(*f, which, root.t, lo, hi);
       }
       if (on_edge && which.feature == RotatingFeature::VertexEdge && sq.vertices.size() == 2 &&
           behind_segment(P, sp, Q, sq, which.edge, root.t))
@@ -503,6 +507,40 @@ template <class B> class RotatingPairPredictor {
       rule = StartRule::CrossingsOnly;
       lo = past_crossing(gap, root.t, hi);
     }
+  }
+
+  // Whether the crossing of `which` first placed at t (by B's enclosure, a few values of B off)
+  // may be on its edge: the point's place along the edge over the span in which the exact
+  // crossing lies, from the last value of B before t (not before lo) at which the gap is
+  // certainly positive to the first after it at which it is certainly negative (none before hi:
+  // false), evaluated in the wider type where B has one. (B's own span may be many values of B
+  // wide: in float it took a crossing past an edge's end for the contact, 6 ulps before the
+  // contact of the feature pair next to it, on the 200-polygon spinning gas.)
+  bool crossing_may_be_on_edge(const FeatureFunctions<B>& f, const Which& which, const B& t, const B& lo, const B& hi) const {
+    using W = typename Wider<B>::type;
+    if constexpr (std::is_void_v<W> || std::is_same_v<B, Quad>) {
+      return may_be_on_over_span(f, t, lo, hi);
+    } else {
+      return may_be_on_over_span(wide_features<W>(which), t, lo, hi);
+    }
+  }
+  template <class W>
+  static bool may_be_on_over_span(const FeatureFunctions<W>& f, const B& t, const B& lo, const B& hi) {
+    const auto at = [](const B& x) { return Interval<W>(W(x)); };
+    B before = t, step = first_step_past(t);
+    while (before > lo && !f.gap(at(before)).positive()) {
+      before = t - step > lo ? B(t - step) : lo;
+      step = step * B(2);
+    }
+    B after = t;
+    step = first_step_past(t);
+    while (!f.gap(at(after)).negative()) {
+      if (!(t + step < hi)) return false;
+      after = t + step;
+      step = step * B(2);
+    }
+    const Interval<W> along = f.along(Interval<W>(W(before), W(after)));
+    return along.hi() >= W(0) && along.lo() <= f.length_sq.hi();
   }
 
   void search_edge(const FeatureFunctions<B>& f, const PathAt<B>& P, const RotatingShape<B>& sp, const Vec2<B>& r,
@@ -765,17 +803,26 @@ template <class B> class RotatingPairPredictor {
     }
   }
 
-  // The function of `which` in W, from the search's origin, the stored values converted exactly.
-  template <class W> WaveSum<W> wide_function(const Which& which) const {
+  // The functions of `which` (a point against an edge) in W, from the search's origin, the stored
+  // values converted exactly.
+  template <class W> FeatureFunctions<W> wide_features(const Which& which) const {
     const RotatingShape<B>& sp = which.point_on_a ? a_ : b_;
     const RotatingShape<B>& sq = which.point_on_a ? b_ : a_;
     const PathAt<W> P = path_at(widened_path<W>(sp.path), W(origin_)), Q = path_at(widened_path<W>(sq.path), W(origin_));
     const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
     const std::size_t n = sq.vertices.size();
-    const Vec2<W> q = v(sq.vertices[which.edge]);
-    if (which.feature == RotatingFeature::CircleVertex) return circle_vertex_function(P, W(sp.radius), Q, q);
     const Vec2<W> r = which.feature == RotatingFeature::VertexEdge ? v(sp.vertices[which.point]) : Vec2<W>{};
-    return point_edge_functions(P, r, W(sp.radius), Q, q, v(sq.vertices[(which.edge + 1) % n])).gap;
+    return point_edge_functions(P, r, W(sp.radius), Q, v(sq.vertices[which.edge]), v(sq.vertices[(which.edge + 1) % n]));
+  }
+
+  // The function of `which` in W, from the search's origin, the stored values converted exactly.
+  template <class W> WaveSum<W> wide_function(const Which& which) const {
+    if (which.feature != RotatingFeature::CircleVertex) return wide_features<W>(which).gap;
+    const RotatingShape<B>& sp = which.point_on_a ? a_ : b_;
+    const RotatingShape<B>& sq = which.point_on_a ? b_ : a_;
+    const PathAt<W> P = path_at(widened_path<W>(sp.path), W(origin_)), Q = path_at(widened_path<W>(sq.path), W(origin_));
+    const Vec2<B>& q = sq.vertices[which.edge];
+    return circle_vertex_function(P, W(sp.radius), Q, Vec2<W>{W(q.x), W(q.y)});
   }
 
   const RotatingShape<B>& a_;
