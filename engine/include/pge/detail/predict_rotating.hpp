@@ -458,13 +458,21 @@ template <class B> class RotatingPairPredictor {
           continue;
         }
       bool on_edge = true;
+      std::optional<B> first_negative;  // past_crossing(gap, root.t, hi), once asked
       if (f) {
         const Interval<B> along = f->along(Interval<B>(root.t));
         on_edge = along.hi() >= B(0) && along.lo() <= f->length_sq.hi();
         // At a corner met exactly (corner on corner, on a mirror at x = 76) the point at root.t,
         // a few ulps early, was certainly short of the edge's end for every feature pair there,
-        // and the contact was missed (docs/rotation.md, E5): the span of the crossing decides.
-        if (!on_edge && !root.at_start_overlap) on_edge = crossing_may_be_on_edge(*f, which, root.t, lo, hi);
+        // and the contact was missed (docs/rotation.md, E5): the span of the crossing decides,
+        // first B's own (wider, cheap: the search past the crossing needs its end anyway), then
+        // the wider type's.
+        if (!on_edge && !root.at_start_overlap) {
+          first_negative = past_crossing(gap, root.t, hi);
+          const B last_positive = root.t > lo ? interval_next_down(root.t) : root.t;
+          on_edge = *first_negative < hi && may_be_on(*f, Interval<B>(last_positive, *first_negative)) &&
+                    crossing_may_be_on_edge(*f, which, root.t, lo, hi);
+        }
       }
       if (on_edge && which.feature == RotatingFeature::VertexEdge && sq.vertices.size() == 2 &&
           behind_segment(P, sp, Q, sq, which.edge, root.t))
@@ -505,7 +513,7 @@ template <class B> class RotatingPairPredictor {
         return;
       }
       rule = StartRule::CrossingsOnly;
-      lo = past_crossing(gap, root.t, hi);
+      lo = first_negative ? *first_negative : past_crossing(gap, root.t, hi);
     }
   }
 
@@ -539,7 +547,10 @@ template <class B> class RotatingPairPredictor {
       after = t + step;
       step = step * B(2);
     }
-    const Interval<W> along = f.along(Interval<W>(W(before), W(after)));
+    return may_be_on(f, Interval<W>(W(before), W(after)));
+  }
+  template <class W> static bool may_be_on(const FeatureFunctions<W>& f, const Interval<W>& span) {
+    const Interval<W> along = f.along(span);
     return along.hi() >= W(0) && along.lo() <= f.length_sq.hi();
   }
 
