@@ -235,8 +235,8 @@ template <class T> struct World<T>::Impl {
   // Whether the contact points approach at s.time (the impulse test).
   bool rotating_approaching(const Scheduled<T>& s) const;
   // The impulse test of a predictor's contact record of the pair (lo, hi), at its time, with the
-  // corner rule's verdict (detail::StartContact).
-  detail::StartContact rotating_start_contact(BodyIndex lo, BodyIndex hi, const detail::RotatingContact<T>& c) const;
+  // corner rule's verdict (detail::ContactTest).
+  detail::ContactTest rotating_contact_test(BodyIndex lo, BodyIndex hi, const detail::RotatingContact<T>& c) const;
   // The collision of a rotating pair at now: the impulse with lever arms (detail/rigid.hpp).
   void collide_rotating(const Scheduled<T>& s);
   // A body's vertex k in world coordinates at time t (rotating or not).

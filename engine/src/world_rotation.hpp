@@ -135,14 +135,14 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   if (!(end > from)) end = std::min(wanted, detail::interval_next_up(from));  // progress, however late the clock
   detail::RotatingOptions options;
   options.correctly_rounded = solver == SolverKind::Certified;
-  // A contact at `from` whose points do not approach is searched past: it would have no impulse
-  // and be found again at once (RotatingPairPredictor::set_start_test; fixtures/regressions/
-  // rotation/turning-boxes-meet-face-on-face-with-corners-aligned.json).
-  const auto approaching_start = [&](const detail::RotatingContact<T>& start) { return rotating_start_contact(lo, hi, start); };
+  // A contact at `from` whose points do not approach, or a corner passed, is searched past: it
+  // would have no impulse and be found again at once (RotatingPairPredictor::set_contact_test;
+  // fixtures/regressions/rotation/turning-boxes-meet-face-on-face-with-corners-aligned.json).
+  const auto test = [&](const detail::RotatingContact<T>& contact) { return rotating_contact_test(lo, hi, contact); };
   const detail::RotatingContact<T> c =
       solver == SolverKind::Fast
           ? detail::predict_rotating_pair_fast(sa, sb, from, end)
-          : detail::predict_rotating_pair(sa, sb, from, end, StartRule::OverlapCollides, options, approaching_start);
+          : detail::predict_rotating_pair(sa, sb, from, end, StartRule::OverlapCollides, options, test);
   if (c.rounding_undecided) ++counts.undecided_roundings;
   PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
   out.rotating = true;
@@ -223,12 +223,12 @@ inline auto World<T>::Impl::rotating_geometry(const Scheduled<T>& s, const T& t)
 }
 
 template <class T> inline auto World<T>::Impl::rotating_approaching(const Scheduled<T>& s) const -> bool {
-  return rotating_start_contact(s.lo, s.hi, rotating_record(s, s.time)) == detail::StartContact::Collides;
+  return rotating_contact_test(s.lo, s.hi, rotating_record(s, s.time)) == detail::ContactTest::Collides;
 }
 
 template <class T>
-inline auto World<T>::Impl::rotating_start_contact(BodyIndex lo, BodyIndex hi, const detail::RotatingContact<T>& c) const
-    -> detail::StartContact {
+inline auto World<T>::Impl::rotating_contact_test(BodyIndex lo, BodyIndex hi, const detail::RotatingContact<T>& c) const
+    -> detail::ContactTest {
   const Body& a = bodies[lo];
   const Body& b = bodies[hi];
   const Kinematics<T> ka = kinematics(a, c.t), kb = kinematics(b, c.t);
@@ -236,9 +236,9 @@ inline auto World<T>::Impl::rotating_start_contact(BodyIndex lo, BodyIndex hi, c
       detail::rotating_contact_geometry(rotating_shape(a), rotating_shape(b), c, solver != SolverKind::Fast);
   const T wa = a.rotates ? spin_of(a).omega : T(0), wb = b.rotates ? spin_of(b).omega : T(0);
   const Vec2<T> ua = ka.v + perp(g.arm_a) * wa, ub = kb.v + perp(g.arm_b) * wb;
-  if (!g.enters) return detail::StartContact::PassesCorner;
-  return dot(ub - ua, g.normal) < T(0) && dot(g.normal, g.normal) > T(0) ? detail::StartContact::Collides
-                                                                         : detail::StartContact::Touches;
+  if (!g.enters) return detail::ContactTest::PassesCorner;
+  return dot(ub - ua, g.normal) < T(0) && dot(g.normal, g.normal) > T(0) ? detail::ContactTest::Collides
+                                                                         : detail::ContactTest::Touches;
 }
 
 template <class T> inline auto World<T>::Impl::collide_rotating(const Scheduled<T>& s) -> void {

@@ -117,8 +117,9 @@ std::optional<WaveRoot<B>> bounding_circles_meet(const RotatingShape<B>& a, cons
   return earliest_wave_root(reach, lo, hi, StartRule::CrossingsOnly, max_boxes);
 }
 
-// What the caller's impulse test makes of a contact at the search's start (set_start_test).
-enum class StartContact : std::uint8_t {
+// What the caller's impulse test makes of a contact (set_contact_test): of one at the search's
+// start, and of every vertex-edge root (the corner rule).
+enum class ContactTest : std::uint8_t {
   Collides,      // its points approach: an impulse
   Touches,       // they do not (no impulse): searched past unless its gap goes certainly negative first
   PassesCorner,  // a vertex meeting a vertex whose relative motion does not enter the overlap cone
@@ -132,10 +133,11 @@ template <class B> class RotatingPairPredictor {
 
   // A contact at the search's start (touching there, or the overlap rule's) whose points `test`
   // says do not approach is searched past, as a graze already processed is (past_tangency),
-  // unless its gap goes certainly negative first. The engine asks its impulse test here: a
-  // contact at the start without an impulse leaves the state as it is, and would be found
-  // again at once, for ever.
-  void set_start_test(std::function<StartContact(const RotatingContact<B>&)> test) { start_test_ = std::move(test); }
+  // unless its gap goes certainly negative first; a vertex-edge root anywhere that `test` says
+  // passes a corner is searched past either way. The engine asks its impulse test here: a
+  // contact without an impulse leaves the state as it is, and would be found again at once,
+  // for ever.
+  void set_contact_test(std::function<ContactTest(const RotatingContact<B>&)> test) { contact_test_ = std::move(test); }
 
   RotatingContact<B> earliest(const B& lo, const B& hi) {
     origin_ = lo;
@@ -483,7 +485,7 @@ template <class B> class RotatingPairPredictor {
                         !other_outline_axis_shallower(P, sp, Q, sq, which.point, which.edge, root.t))))) {
         // A contact at the start whose points do not approach, and whose gap does not go
         // certainly negative before it goes certainly positive or rising (or the window ends),
-        // is searched past (see set_start_test). One whose gap goes negative stays: a body
+        // is searched past (see set_contact_test). One whose gap goes negative stays: a body
         // starting to rest on a face (a box lying on a floor under gravity) touches without
         // approaching, and resting contact begins at that zero-impulse event.
         // Placed first (refine): a root at the start may be placed later by the wider type,
@@ -495,14 +497,14 @@ template <class B> class RotatingPairPredictor {
         // start or later (its gap may fall through zero beyond the edge's end).
         const bool at_start = root.t == from_;
         if (at_start || which.feature == RotatingFeature::VertexEdge) {
-          const StartContact test = contact_test(which, root);
-          if (test == StartContact::PassesCorner || (at_start && test == StartContact::Touches)) {
+          const ContactTest test = ask_contact_test(which, root);
+          if (test == ContactTest::PassesCorner || (at_start && test == ContactTest::Touches)) {
             if (const std::optional<B> past = past_tangency(gap, root.t, hi)) {
               rule = StartRule::CrossingsOnly;
               lo = *past;
               continue;
             }
-            if (test == StartContact::PassesCorner) {
+            if (test == ContactTest::PassesCorner) {
               rule = StartRule::CrossingsOnly;
               lo = past_crossing(gap, root.t, hi);
               continue;
@@ -560,10 +562,10 @@ template <class B> class RotatingPairPredictor {
     search(f.gap, &f, P, sp, r, rho, Q, sq, lo, until, which);
   }
 
-  // The caller's test of a contact (set_start_test), as its impulse would find; every contact
+  // The caller's test of a contact (set_contact_test), as its impulse would find; every contact
   // collides without one.
-  StartContact contact_test(const Which& which, const WaveRoot<B>& root) const {
-    if (!start_test_) return StartContact::Collides;
+  ContactTest ask_contact_test(const Which& which, const WaveRoot<B>& root) const {
+    if (!contact_test_) return ContactTest::Collides;
     RotatingContact<B> c;
     c.status = RootStatus::Root;
     c.t = root.t;
@@ -573,7 +575,7 @@ template <class B> class RotatingPairPredictor {
     c.point_on_a = which.point_on_a;
     c.point = which.point;
     c.edge = which.edge;
-    return start_test_(c);
+    return contact_test_(c);
   }
 
   // Whether P's body lies certainly behind edge k of the segment Q at t (its vertices' mean).
@@ -841,7 +843,7 @@ template <class B> class RotatingPairPredictor {
   StartRule rule_, rule_now_ = StartRule::CrossingsOnly;
   B from_{};  // where the feature searches start (rule_now_ holds there)
   RotatingOptions opt_;
-  std::function<StartContact(const RotatingContact<B>&)> start_test_;
+  std::function<ContactTest(const RotatingContact<B>&)> contact_test_;
   RotatingContact<B> best_;
   B origin_{};
   // The fastest any point of one shape closes on the other over the search's window (advance);
@@ -1088,9 +1090,9 @@ RotatingGeometry<B> rotating_contact_geometry(const RotatingShape<B>& a, const R
 template <class B>
 RotatingContact<B> predict_rotating_pair(const RotatingShape<B>& a, const RotatingShape<B>& b, const B& lo, const B& hi,
                                          StartRule rule, RotatingOptions opt = {},
-                                         std::type_identity_t<std::function<StartContact(const RotatingContact<B>&)>> start_test = {}) {
+                                         std::type_identity_t<std::function<ContactTest(const RotatingContact<B>&)>> test = {}) {
   RotatingPairPredictor<B> p(a, b, rule, opt);
-  p.set_start_test(std::move(start_test));
+  p.set_contact_test(std::move(test));
   return p.earliest(lo, hi);
 }
 
