@@ -122,8 +122,8 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   // (Measuring the window from where they meet instead of from `from` cut the predictions on the
   // spinning gas from 25.4 to 17.2 per event but made it slower, 960-980 events/s against 1,185:
   // longer windows cost the feature searches more than the resume entries they save.)
-  if (const auto meet = detail::bounding_circles_meet(sa, sb, from, wanted, detail::RotatingOptions{}.max_boxes);
-      meet && meet->status == RootStatus::None) {
+  const auto meet = detail::bounding_circles_meet(sa, sb, from, wanted, detail::RotatingOptions{}.max_boxes);
+  if (meet && meet->status == RootStatus::None) {
     clear = wanted;
     return std::nullopt;
   }
@@ -139,10 +139,13 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   // would have no impulse and be found again at once (RotatingPairPredictor::set_contact_test;
   // fixtures/regressions/rotation/turning-boxes-meet-face-on-face-with-corners-aligned.json).
   const auto test = [&](const detail::RotatingContact<T>& contact) { return rotating_contact_test(lo, hi, contact); };
-  const detail::RotatingContact<T> c =
-      solver == SolverKind::Fast
-          ? detail::predict_rotating_pair_fast(sa, sb, from, end)
-          : detail::predict_rotating_pair(sa, sb, from, end, StartRule::OverlapCollides, options, test);
+  const detail::RotatingContact<T> c = [&] {
+    if (solver == SolverKind::Fast) return detail::predict_rotating_pair_fast(sa, sb, from, end);
+    detail::RotatingPairPredictor<T> predictor(sa, sb, StartRule::OverlapCollides, options);
+    predictor.set_contact_test(test);
+    predictor.set_bounding_circles(meet);  // asked over [from, wanted], wanted >= end
+    return predictor.earliest(from, end);
+  }();
   if (c.rounding_undecided) ++counts.undecided_roundings;
   PredictedContact<T> out{c.t, ContactKind::VertexEdge, 0, 0, c.at_start_overlap};
   out.rotating = true;

@@ -456,8 +456,71 @@ template <class B> SinCos<B> sin_cos_reduced(const Interval<B>& r) {
   return taylor_sin_cos(r, tab.sin_coef, tab.cos_coef, tab.sin_remainder, tab.cos_remainder, 2);
 }
 
-// sin(x), cos(x) for every x in X: each contains the exact range over X.
+template <class B> SinCos<B> sin_cos_computed(const Interval<B>& x);
+
+// The last few hundred enclosures of sin and cos, per thread, keyed by the argument's bits: a
+// rotating pair's feature functions share their waves (the two angles and their difference), and
+// a prediction asks them at the same times over and over (every feature's gap at the search's
+// start, each search's first box): 42% of the sines a 1,000-polygon spinning gas asks in double
+// are repeats, and the memo made it 13% faster (bench_scale spinning_polygons/1000, release
+// build). sin_cos is a function of the argument's two bounds alone, so a hit returns exactly what
+// the computation would: the same enclosures, the same events. Over the bounds' value bits (an
+// x87 long double's 10 of its 16 bytes); Quad computes every time.
+template <class B> class SinCosMemo {
+ public:
+  static constexpr bool enabled = std::is_same_v<B, float> || std::is_same_v<B, double> ||
+                                  (std::is_same_v<B, long double> && std::numeric_limits<long double>::digits == 64);
+  static SinCos<B> get(const Interval<B>& x) {
+    const Key key = key_of(x);
+    Entry& e = entries()[slot(key)];
+    if (e.used && e.key == key) return {Interval<B>(e.sin_lo, e.sin_hi), Interval<B>(e.cos_lo, e.cos_hi)};
+    const SinCos<B> v = sin_cos_computed(x);
+    e = {key, true, v.sin.lo(), v.sin.hi(), v.cos.lo(), v.cos.hi()};
+    return v;
+  }
+
+ private:
+  static constexpr std::size_t kSlots = 256;
+  static constexpr std::size_t kValueBytes = std::is_same_v<B, long double> ? 10 : sizeof(B);
+  using Key = std::array<std::uint64_t, 3>;  // lo's first 8 bytes, hi's, then the rest of both
+  struct Entry {
+    Key key;
+    bool used;
+    B sin_lo, sin_hi, cos_lo, cos_hi;
+  };
+  static Key key_of(const Interval<B>& x) {
+    Key k{};
+    constexpr std::size_t head = kValueBytes < 8 ? kValueBytes : 8, tail = kValueBytes - head;
+    std::memcpy(&k[0], &x.lo(), head);
+    std::memcpy(&k[1], &x.hi(), head);
+    if constexpr (tail > 0) {
+      std::memcpy(&k[2], reinterpret_cast<const unsigned char*>(&x.lo()) + head, tail);
+      std::memcpy(reinterpret_cast<unsigned char*>(&k[2]) + tail, reinterpret_cast<const unsigned char*>(&x.hi()) + head, tail);
+    }
+    return k;
+  }
+  static std::size_t slot(const Key& k) {
+    std::uint64_t h = k[0] * 0x9E3779B97F4A7C15ull ^ (k[1] + 0x632BE59BD9B4E019ull + (k[0] << 6)) ^ k[2];
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    return static_cast<std::size_t>(h >> 56) % kSlots;
+  }
+  static std::array<Entry, kSlots>& entries() {
+    static thread_local std::array<Entry, kSlots> table{};
+    return table;
+  }
+};
+
+// sin(x), cos(x) for every x in X: each contains the exact range over X (through the memo above
+// where B has one).
 template <class B> SinCos<B> sin_cos(const Interval<B>& x) {
+  if constexpr (SinCosMemo<B>::enabled) {
+    return SinCosMemo<B>::get(x);
+  } else {
+    return sin_cos_computed(x);
+  }
+}
+template <class B> SinCos<B> sin_cos_computed(const Interval<B>& x) {
   const TrigTables<B>& tab = TrigTables<B>::get();
   const Interval<B> unit(B(-1), B(1));
   SinCos<B> whole{unit, unit};

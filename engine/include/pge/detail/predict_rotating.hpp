@@ -105,7 +105,9 @@ template <> struct Certifying<Quad> { using type = void; };
 // in [lo, hi]: nothing if they overlap at lo; else the earliest root of |d|^2 - (reach_a +
 // reach_b)^2 (a polynomial: no waves), None if they stay apart to hi, Undecided at the box
 // budget with the time up to which they certainly do. Before a Root's t the squared distance
-// is certainly above the reaches' sum squared.
+// is certainly above the reaches' sum squared: the Root is a bound, the last value of B before the
+// meeting at which B's enclosure proves them apart (WaveRootFinder::bound_only), not placed to
+// the ulp.
 template <class B>
 std::optional<WaveRoot<B>> bounding_circles_meet(const RotatingShape<B>& a, const RotatingShape<B>& b, const B& lo,
                                                  const B& hi, std::uint64_t max_boxes) {
@@ -114,7 +116,9 @@ std::optional<WaveRoot<B>> bounding_circles_meet(const RotatingShape<B>& a, cons
   const Interval<B> r = Interval<B>(a.reach) + Interval<B>(b.reach);
   reach.base = squared_norm(relative_centre(path_at(a.path, lo), path_at(b.path, lo))) + constant_poly(-(r * r));
   if (!reach(Interval<B>(lo)).positive()) return std::nullopt;
-  return earliest_wave_root(reach, lo, hi, StartRule::CrossingsOnly, max_boxes);
+  WaveRootFinder<B> finder(reach, StartRule::CrossingsOnly);
+  finder.bound_only();
+  return finder.earliest(lo, hi, max_boxes);
 }
 
 // What the caller's impulse test makes of a contact (set_contact_test): of one at the search's
@@ -139,6 +143,14 @@ template <class B> class RotatingPairPredictor {
   // for ever.
   void set_contact_test(std::function<ContactTest(const RotatingContact<B>&)> test) { contact_test_ = std::move(test); }
 
+  // The bounding circles' meeting (bounding_circles_meet) from the search's start to at least its
+  // end, already asked by the caller: earliest() takes it instead of asking again.
+  void set_bounding_circles(const std::optional<WaveRoot<B>>& meet) {
+    circles_given_ = true;
+    circles_apart_ = meet.has_value();
+    if (meet) circles_ = *meet;
+  }
+
   RotatingContact<B> earliest(const B& lo, const B& hi) {
     origin_ = lo;
     best_ = {};
@@ -148,10 +160,14 @@ template <class B> class RotatingPairPredictor {
     if (opt_.bounding_circles) {
       // Apart at lo: nothing can touch before the bounding circles do. (Overlapping at lo, even
       // while separating, a turning corner may still strike: the search starts at lo.)
-      if (const std::optional<WaveRoot<B>> circles = bounding_circles_meet(a_, b_, lo, hi, opt_.max_boxes)) {
+      const std::optional<WaveRoot<B>> circles =
+          !circles_given_ ? bounding_circles_meet(a_, b_, lo, hi, opt_.max_boxes)
+                          : circles_apart_ ? std::optional<WaveRoot<B>>(circles_) : std::nullopt;
+      if (circles) {
         const WaveRoot<B>& meet = *circles;
         best_.boxes += meet.boxes;
-        if (meet.status == RootStatus::None) return best_;
+        // Asked over a longer span by the caller: a meeting (or the budget's end) past hi is none.
+        if (meet.status == RootStatus::None || !(meet.t < hi)) return best_;
         if (meet.status == RootStatus::Undecided) {
           best_.status = RootStatus::Undecided;
           best_.t = meet.t;
@@ -844,6 +860,9 @@ template <class B> class RotatingPairPredictor {
   B from_{};  // where the feature searches start (rule_now_ holds there)
   RotatingOptions opt_;
   std::function<ContactTest(const RotatingContact<B>&)> contact_test_;
+  // set_bounding_circles: the caller's answer, if given (apart at lo: circles_ holds it)
+  bool circles_given_ = false, circles_apart_ = false;
+  WaveRoot<B> circles_{};
   RotatingContact<B> best_;
   B origin_{};
   // The fastest any point of one shape closes on the other over the search's window (advance);
