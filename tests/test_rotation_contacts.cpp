@@ -1172,6 +1172,28 @@ TEST(RotationResponse, ASquareLandingFlatBouncesWithoutSpinning) {
   }
 }
 
+// A point leaving a corner's apex exactly along a bounding ray, when the ray turns with its body
+// (pge/detail/corner.hpp, pge::enters_cone; docs/rotation.md, E6). By hand, for the quarter plane
+// between cw = (1, 0) and ccw = (0, 1): a point moving at u = (1, 0) along cw stays on the x axis
+// while the ray turns at w to angle w t, so it is inside (to the ray's left) exactly when the
+// ray turns clockwise, w < 0; with an acceleration a = (0, 1) the point
+// is at (t, t^2 / 2), at angle t / 2 to first order, inside iff w < 1/2. Along ccw (u = (0, 1))
+// the point stays on the y axis, inside iff that ray turns counter-clockwise, w > 0. Without a
+// turn (w = 0) the translating rule: a slide along the boundary with no acceleration enters not.
+TEST(RotationResponse, ASlideAlongATurningRayEntersTheConeOnlyWhereTheRayTurnsAwayFromIt) {
+  const pge::Cone<double> quarter{{1, 0}, {0, 1}};
+  const V along_cw{1, 0}, along_ccw{0, 1}, none{0, 0}, up{0, 1};
+  EXPECT_FALSE(pge::enters_cone(quarter, along_cw, none));
+  EXPECT_TRUE(pge::enters_cone(quarter, along_cw, none, -1.0, 0.0));
+  EXPECT_FALSE(pge::enters_cone(quarter, along_cw, none, 1.0, 0.0));
+  EXPECT_TRUE(pge::enters_cone(quarter, along_cw, up));
+  EXPECT_TRUE(pge::enters_cone(quarter, along_cw, up, 0.25, 0.0));
+  EXPECT_FALSE(pge::enters_cone(quarter, along_cw, up, 0.75, 0.0));
+  EXPECT_TRUE(pge::enters_cone(quarter, along_ccw, none, 0.0, 1.0));
+  EXPECT_FALSE(pge::enters_cone(quarter, along_ccw, none, 0.0, -1.0));
+  EXPECT_FALSE(pge::enters_cone(quarter, along_ccw, none));
+}
+
 TEST(RotationResponse, CornerOnCornerTakesTheConesBisectorAndEntersOnlyInsideIt) {
   // Two unit diamonds (vertices (1, 0), (0, 1), (-1, 0), (0, -1)), P about (-1, 0) and Q about
   // (1, 0), both at angle 0 at t = 0: P's vertex 0 is Q's vertex 2, at the origin, the end of

@@ -109,7 +109,7 @@ struct SpinSpec {
   int tick = 1;     // 1..3: a placement's dyadic time, tick / 4 s
   int mass_exp = 0; // the main body's mass 2^k
   double until = 2;  // the run's horizon, s
-  bool known_failures = false;  // SpinGenOptions::known_failures
+  bool edge_end_landing = false;  // SpinGenOptions::edge_end_landing
   std::array<double, 6> p{};  // parameters in [-1, 1] with 10 bits after the point
 };
 
@@ -160,7 +160,7 @@ std::vector<BodyDesc> turnstile(const SpinSpec& m, double mass) {
 // diagonal, at t = 0, the box turning and moving. Variants 1-3: a diamond falling and turning
 // whose bottom corner is at t1 (angle exactly 0 then; its lowest point while |angle| < pi/4)
 // exactly on the end (0, 0) of a floor segment to the right (1), to the left (2), or on the joint
-// of both (3): at t1 = 0, or (SpinGenOptions::known_failures) landing there at a dyadic t1 > 0.
+// of both (3): at t1 = 0, or (SpinGenOptions::edge_end_landing) landing there at a dyadic t1 > 0.
 std::vector<BodyDesc> edge_end(const SpinSpec& m, double mass) {
   const auto& p = m.p;
   const double omega = m.sign * quantize(0.125 + 0.875 * mag(p[2]), 6);  // |omega| t1 <= 3/4 < pi/4
@@ -172,7 +172,8 @@ std::vector<BodyDesc> edge_end(const SpinSpec& m, double mass) {
             fixed_segment(corner, {corner.x + away.x, corner.y + away.y})};
   }
   const Shape diamond = shape_of(Outline::Diamond, q8(0.5 + 0.25 * p[0]));
-  const double r = diamond.size, t1 = m.known_failures ? 0.25 * m.tick : 0.0;
+  // Landing (on the scenes of odd `shape`, which variants 1-3 do not otherwise read) or at the start.
+  const double r = diamond.size, t1 = m.edge_end_landing && m.shape % 2 == 1 ? 0.25 * m.tick : 0.0;
   const Vec2d v{q8(0.5 * p[3]), -q8(0.5 + 1.5 * mag(p[4]))};
   std::vector<BodyDesc> out;
   out.push_back(turning_body(diamond, {-v.x * t1, r - v.y * t1}, v, mass, 0.0 - omega * t1, omega));
@@ -308,7 +309,7 @@ rc::Gen<SpinSpec> gen_spin_spec(const SpinGenOptions& o) {
     m.tick = *uniform_in(1, 4);
     m.mass_exp = *uniform_in(-2, 3);
     m.until = o.until;
-    m.known_failures = o.known_failures;
+    m.edge_end_landing = o.edge_end_landing;
     for (double& x : m.p) x = *gen_signed(10);
     return m;
   });

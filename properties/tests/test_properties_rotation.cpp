@@ -364,8 +364,7 @@ TEST(RotatingRegressions, PropertiesHoldOnEveryFixedScene) {
 }
 
 // Property 1 with what the engine is known to fail (SpinGenOptions::known_failures,
-// docs/rotation.md, "Known failures"): a corner landing on a segment's end on its path,
-// restitution 1/2 (chattering turning bodies).
+// docs/rotation.md, "Known failures"): restitution 1/2 (chattering turning bodies).
 // Disabled: run it to see whether a change to the engine fixed them.
 TEST(RotatingOracleProperties, DISABLED_KnownFailures) {
   SpinGenOptions o;

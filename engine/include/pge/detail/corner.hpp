@@ -48,18 +48,30 @@ std::optional<Cone<T>> overlap_cone_of(const Vec2<T>& q0, const Vec2<T>& q1, con
 
 // Whether a point leaving the cone's apex with velocity u and acceleration a goes strictly
 // inside it: u inside; or u along a bounding ray and a turning it inwards; or u zero, or along
-// the boundary line of a half-plane cone, and a inside.
-template <class T> bool enters_cone(const Cone<T>& cone, const Vec2<T>& u, const Vec2<T>& a) {
+// the boundary line of a half-plane cone, and a inside. A bounding ray that turns (its body's
+// interior direction, at w_cw or w_ccw rad/s) moves with it: the second derivative of the point's
+// side of the ray r(t) is cross(r, a) + 2 w cross(perp(r), u) (r' = w perp(r); cross(r'', d)
+// vanishes at the apex). A diamond's edge sliding exactly along a segment's end (u along the ray)
+// while it turns onto it enters by that term alone (docs/rotation.md, E6). With w = 0, the
+// translating rule.
+template <class T>
+bool enters_cone(const Cone<T>& cone, const Vec2<T>& u, const Vec2<T>& a, const T& w_cw = T(0), const T& w_ccw = T(0)) {
   const T right_of_cw = cross(cone.cw, u);
   const T left_of_ccw = cross(u, cone.ccw);
-  const auto a_inside = [&] { return cross(cone.cw, a) > T(0) && cross(a, cone.ccw) > T(0); };
-  if (u.x == T(0) && u.y == T(0)) return a_inside();
+  // Curving to the left of cw, to the right of ccw (second derivatives of the two sides).
+  const auto into_cw = [&] {
+    return (w_cw == T(0) ? cross(cone.cw, a) : cross(cone.cw, a) + T(2) * w_cw * cross(perp(cone.cw), u)) > T(0);
+  };
+  const auto into_ccw = [&] {
+    return (w_ccw == T(0) ? cross(a, cone.ccw) : cross(a, cone.ccw) + T(2) * w_ccw * cross(u, perp(cone.ccw))) > T(0);
+  };
+  if (u.x == T(0) && u.y == T(0)) return into_cw() && into_ccw();
   // Along both bounding rays: the cone is a half-plane (a vertex lying on a segment or on a flat
   // face) and u slides along its boundary line; a turns it inwards or not (box-slide.json).
-  if (right_of_cw == T(0) && left_of_ccw == T(0)) return a_inside();
+  if (right_of_cw == T(0) && left_of_ccw == T(0)) return into_cw() && into_ccw();
   if (right_of_cw > T(0) && left_of_ccw > T(0)) return true;
-  if (right_of_cw == T(0) && left_of_ccw > T(0)) return cross(cone.cw, a) > T(0);
-  if (left_of_ccw == T(0) && right_of_cw > T(0)) return cross(a, cone.ccw) > T(0);
+  if (right_of_cw == T(0) && left_of_ccw > T(0)) return into_cw();
+  if (left_of_ccw == T(0) && right_of_cw > T(0)) return into_ccw();
   return false;
 }
 

@@ -1031,7 +1031,13 @@ void corner_rule(const RotatingShape<B>& sp, const RotatingShape<B>& sq, std::si
   const std::optional<Cone<B>> cone = overlap_cone_of(q[0], q[1], p[0], p[1]);
   if (!cone) return;
   g.corner = true;
-  g.enters = enters_cone(*cone, u, acc);
+  // Each bounding ray turns with its body: Q's interior directions at Q's rate, P's (reversed)
+  // at P's.
+  const auto rate = [&](const Vec2<B>& ray) {
+    const auto same = [&](const Vec2<B>& x) { return x.x == ray.x && x.y == ray.y; };
+    return same(q[0]) || same(q[1]) ? sq.path.omega : sp.path.omega;
+  };
+  g.enters = enters_cone(*cone, u, acc, rate(cone->cw), rate(cone->ccw));
   out = corner_normal(*cone);
 }
 
