@@ -126,10 +126,14 @@ std::string write_failure(const GeneratedScene& g, const Failure& f, const FuzzO
   const std::string text = write_scene(s);
   const std::string name = fmt::format("{}-{:016x}", failure_kind_name(f.kind), mix(std::hash<std::string>{}(text)));
   s.name = name;
+  // The note is a string, as `pge check` and the regression tests read it (fixtures/README.md):
+  // an object here made every written scene a bad scene file (exit 3) until edited by hand.
   const std::string note = fmt::format(
-      R"J({{"note": {{"found_by": "pge fuzz --seed {} --shard {}/{} (case {})", "solver": "{}", "failure": "{}", "time": {}, "detail": {}}}}})J",
-      o.seed, o.shard, o.shards, case_index, solver_name(o.solver), failure_kind_name(f.kind), f.time,
-      json_quoted(f.detail));
+      R"J({{"note": {}}})J",
+      json_quoted(fmt::format("Found by pge fuzz --seed {} --shard {}/{}{} (case {}), solver {}: {} at t = {}: {}. "
+                              "Replace this note with what the scene tests and where its expectations come from.",
+                              o.seed, o.shard, o.shards, o.spin > 0 ? fmt::format(" --spin {}", o.spin) : std::string(),
+                              case_index, solver_name(o.solver), failure_kind_name(f.kind), f.time, f.detail)));
   std::filesystem::create_directories(o.out);
   const std::string path = (std::filesystem::path(o.out) / (name + ".json")).string();
   write_scene_file(s, path, note);
