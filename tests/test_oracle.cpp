@@ -1,6 +1,7 @@
 // The oracle on cases whose answers are known exactly. Every expected value is derived in the
 // comment above it, or computed independently with GMP integers; none comes from a run of the
 // oracle.
+#include "judging.hpp"
 #include "oracle_states.hpp"
 
 #include <gtest/gtest.h>
@@ -41,6 +42,26 @@ TEST(OracleNumbers, DoubleFloatLongDoubleQuadConvertExactly) {
   EXPECT_EQ(Dyadic::from(q), Dyadic(m + 1, -112));
   EXPECT_EQ(Dyadic::from(-0.0), Dyadic());
   EXPECT_THROW(Dyadic::from(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+  // The ends of each binary format: the smallest subnormal is 2^-1074 (binary64), 2^-149
+  // (binary32), 2^-16445 (x87: 2^-16382 with 63 fraction bits); the largest finite value is
+  // (2^53 - 1) 2^971, (2^24 - 1) 2^104, (2^64 - 1) 2^16320; and negatives.
+  const auto ones = [](int bits) -> mpz_class { return (mpz_class(1) << static_cast<mp_bitcnt_t>(bits)) - 1; };
+  EXPECT_EQ(Dyadic::from(std::numeric_limits<double>::denorm_min()), Dyadic(mpz_class(1), -1074));
+  EXPECT_EQ(Dyadic::from(std::numeric_limits<float>::denorm_min()), Dyadic(mpz_class(1), -149));
+  EXPECT_EQ(Dyadic::from(std::numeric_limits<long double>::denorm_min()), Dyadic(mpz_class(1), -16445));
+  EXPECT_EQ(Dyadic::from(-std::numeric_limits<double>::max()), Dyadic(-ones(53), 971));
+  EXPECT_EQ(Dyadic::from(std::numeric_limits<float>::max()), Dyadic(ones(24), 104));
+  EXPECT_EQ(Dyadic::from(-std::numeric_limits<long double>::max()), Dyadic(-ones(64), 16320));
+  // Random doubles of every binade, subnormals included, against GMP's exact mpq_class(double).
+  std::mt19937_64 rng(1206);
+  std::uniform_real_distribution<double> mant(-1.0, 1.0);
+  std::uniform_int_distribution<int> expo(-1080, 1023);
+  for (int k = 0; k < 2000; ++k) {
+    const double x = std::ldexp(mant(rng), expo(rng));
+    EXPECT_EQ(Dyadic::from(x).to_mpq(), mpq_class(x)) << x;
+    const auto f = static_cast<float>(std::ldexp(x, std::ilogb(x) / 8 - std::ilogb(x)));  // 2^-135 to 2^127
+    EXPECT_EQ(Dyadic::from(f).to_mpq(), mpq_class(static_cast<double>(f))) << f;
+  }
 }
 
 TEST(OracleNumbers, ArithmeticIsExact) {
@@ -278,6 +299,24 @@ TEST(OracleVerdict, RelativeErrorOfAnIrrationalTime) {
   const double expected = mpq_class(abs(mpq_class((e - exact) / exact))).get_d();
   EXPECT_GT(expected, 2 * std::ldexp(1.0, -53));
   EXPECT_DOUBLE_EQ(j.relative_error, expected);
+}
+
+// The relative error |e - t| / t of an engine time e against an exact time t is reported
+// rounded towards zero, as GMP's mpq_class::get_d rounds the exact quotient (an independent
+// computation): dyadic times of every size, e within a few ulps of t up to far from it, and
+// quotients below the normal doubles (where the answer takes another path).
+TEST(OracleVerdict, RelativeErrorIsTheExactQuotientRoundedTowardsZero) {
+  std::mt19937_64 rng(1206);
+  std::uniform_real_distribution<double> unit(0.5, 1.0);
+  std::uniform_int_distribution<int> binade(-60, 60), apart(-1150, 10);
+  for (int k = 0; k < 3000; ++k) {
+    const Dyadic t = Dyadic::from(std::ldexp(unit(rng), binade(rng)));
+    const int up = k % 3 == 0 ? 1 : -1;
+    const Dyadic e = t + Dyadic::from(up * std::ldexp(unit(rng), apart(rng))) * t;
+    if (e.sign() <= 0) continue;
+    const double expected = mpq_class(abs(mpq_class((e.to_mpq() - t.to_mpq()) / t.to_mpq()))).get_d();
+    EXPECT_EQ(detail::relative_error(e, ExactTime::at(t)), expected) << e.to_string() << " against " << t.to_string();
+  }
 }
 
 // Two pairs far apart: A (x = 0, speed 1) reaches B (x = 3, at rest) at t = 1; D (speed 1) reaches

@@ -21,14 +21,15 @@ Dyadic cross(const ExactVec& a, const ExactVec& b) { return a.x * b.y - a.y * b.
 
 // Kinetic energy m v.v / 2 plus the potential of the body's constant acceleration field,
 // -m field.p, at time t on the given motion (a resting body's path has another acceleration
-// than its field).
-Dyadic energy(const Dyadic& mass, const ExactVec& v, const ExactVec& field, const ExactMotion& m, const Dyadic& t) {
-  const Dyadic kinetic = dot(v, v).scaled(-1);
+// than its field). `vv` is v.v.
+Dyadic energy(const Dyadic& mass, const Dyadic& vv, const ExactVec& field, const ExactMotion& m, const Dyadic& t) {
+  const Dyadic kinetic = vv.scaled(-1);
   if (field.x.is_zero() && field.y.is_zero()) return mass * kinetic;  // no potential: exactly the same sum
   return mass * (kinetic - dot(field, position_at(m, t)));
 }
 
 double length(const ExactVec& v) { return std::sqrt(dot(v, v).to_double()); }
+double length_of(const Dyadic& vv) { return std::sqrt(vv.to_double()); }  // |v| from v.v
 
 // The largest distance of a point of the body from its reference point (a rotating body's pivot).
 double reach_of(const ExactBody& b) {
@@ -55,8 +56,9 @@ Conservation measure_conservation(const ExactBody& a, const ExactBody& b, const 
                 {b, e.vb_before, e.vb_after, e.wb_before, e.wb_after, b_after}};
   for (const auto& s : sides) {
     if (s.body.fixed) continue;
-    c.energy_change += energy(s.body.mass, s.after, s.body.field_acc, s.motion_after, e.time) -
-                       energy(s.body.mass, s.before, s.body.field_acc, s.body.motion, e.time);
+    const Dyadic vv_before = dot(s.before, s.before), vv_after = dot(s.after, s.after);
+    c.energy_change += energy(s.body.mass, vv_after, s.body.field_acc, s.motion_after, e.time) -
+                       energy(s.body.mass, vv_before, s.body.field_acc, s.body.motion, e.time);
     if (s.body.rotates) {
       // I omega^2 / 2 (the pivot is the centre of mass: the linear terms above are its own).
       c.energy_change += s.body.inertia * (s.w_after * s.w_after - s.w_before * s.w_before).scaled(-1);
@@ -75,12 +77,12 @@ Conservation measure_conservation(const ExactBody& a, const ExactBody& b, const 
       // origin and barely turning, where the roundings are not.)
       c.angular_scale += s.body.inertia.to_double() * (std::abs(s.w_before.to_double()) + std::abs(s.w_after.to_double())) +
                          s.body.mass.to_double() * (length(p_before) + reach_of(s.body)) *
-                             (length(s.before) + length(s.after));
+                             (length_of(vv_before) + length_of(vv_after));
     }
     c.momentum_change.x += s.body.mass * (s.after.x - s.before.x);
     c.momentum_change.y += s.body.mass * (s.after.y - s.before.y);
-    c.kinetic_before += (s.body.mass * dot(s.before, s.before)).to_double() / 2;
-    c.momentum_scale += s.body.mass.to_double() * length(s.before);
+    c.kinetic_before += (s.body.mass * vv_before).to_double() / 2;
+    c.momentum_scale += s.body.mass.to_double() * length_of(vv_before);
   }
   return c;
 }
@@ -95,13 +97,11 @@ GapMeasure measure_gap(Frame& fr, FeatureCache& features, BodyIndex a, BodyIndex
     const Dyadic f = evaluate(c.f, tau);
     if (!ft.to_edge) {
       // |D|^2 - R^2 = (|D| - R)(|D| + R): the difference is exact, the sum is not cancelling.
-      const PointPath<Dyadic> d = point_of<Dyadic>(fr, ft.other.body, ft.other.vertex) -
-                                  point_of<Dyadic>(fr, ft.point.body, ft.point.vertex);
-      const Dyadic dx = evaluate(d.x, tau), dy = evaluate(d.y, tau);
+      // f is |D|^2 - R^2 exactly (point_point, with this R), so |D|^2 is f + R^2 exactly.
       const Dyadic reach = (ft.point.vertex < 0 ? pb.radius : Dyadic()) +
                            (ft.other.vertex < 0 ? fr.exact_body(ft.other.body).radius : Dyadic());
       const double r = reach.to_double();
-      return {f.to_double() / (std::sqrt((dx * dx + dy * dy).to_double()) + r), r};
+      return {f.to_double() / (std::sqrt((f + reach * reach).to_double()) + r), r};
     }
     const double len = std::sqrt(c.length2.to_double());
     const double s = evaluate(c.side, tau).to_double();

@@ -21,8 +21,10 @@ template <class N, class Convert> BodyModel<N> model_of(const ExactBody& b, Conv
 Interval Interval::enclose(const Dyadic& x) {
   const double d = x.to_double();  // the nearest double: within half an ulp of x
   if (!std::isfinite(d)) return whole();
-  // An odd mantissa of more than 53 bits is no double: only a shorter one can be d exactly.
-  if (mpz_sizeinbase(x.mantissa().get_mpz_t(), 2) <= 53 && Dyadic::from(d) == x) return Interval(d);
+  // x is a double exactly when its odd mantissa has at most 53 bits, on the subnormals' grid
+  // (exponent >= -1074) and below the overflow: to_double converted it exactly then.
+  const long bits = static_cast<long>(mpz_sizeinbase(x.mantissa().get_mpz_t(), 2));
+  if (bits <= 53 && x.exponent() >= -1074 && bits - 1 + x.exponent() <= 1023) return Interval(d);
   return {next_down(d), next_up(d)};
 }
 

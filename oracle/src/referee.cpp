@@ -186,8 +186,10 @@ Judgement Referee::judge(const ExactEvent& e, const ExactMotion& a_after, const 
       j.pair_features = own->features;
       j.features_match = std::find(own->features.begin(), own->features.end(),
                                    FeaturePair{e.contact, e.feature_a, e.feature_b}) != own->features.end();
-      j.ulps = ulps_from(e.time, *j.pair_time, s.format);
+      // The relative error first: it refines the exact time far enough that the rounding
+      // comparisons of ulps_from are decided by the bracket it leaves (the same answers).
       j.relative_error = relative_error(e.time, *j.pair_time);
+      j.ulps = ulps_from(e.time, *j.pair_time, s.format);
     }
     const Dyadic tau_hi = m.window_end(e, j.pair_time);
     std::vector<Found> found;

@@ -90,7 +90,8 @@ double discs_separated_for(const Hull& a, const Hull& b, double nx, double ny) {
 }  // namespace
 
 SpatialFilter::SpatialFilter(const std::vector<BodyModel<Interval>>& bodies, const Dyadic& now)
-    : bodies_(bodies), reach_(bodies.size(), 0.0), paths_(bodies.size()), entries_(bodies.size()) {
+    : bodies_(bodies), reach_(bodies.size(), 0.0), paths_(bodies.size()), last_moved_(bodies.size(), -kInf),
+      entries_(bodies.size()) {
   std::vector<double> moving;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const BodyModel<Interval>& b = bodies[i];
@@ -113,6 +114,11 @@ SpatialFilter::SpatialFilter(const std::vector<BodyModel<Interval>>& bodies, con
 }
 
 void SpatialFilter::moved(BodyIndex i, const Dyadic& now) {
+  // The mean time between changes of motion, an exponential running mean (only a speed matter).
+  const double t = enclose_time(now).lo();
+  if (const double dt = t - last_moved_[i]; dt > 0 && std::isfinite(dt))
+    free_time_ = free_time_ > 0 ? 0.98 * free_time_ + 0.02 * dt : dt;
+  last_moved_[i] = t;
   paths_[i].valid = false;
   drop_entry(i);
   make_entry(i, enclose_time(now), -kInf);
@@ -165,6 +171,7 @@ double SpatialFilter::box_span(BodyIndex i) const {
   double span = kMaxFilterSpan;
   if (speed > 0) span = std::min(span, cell_ / speed);
   if (acc > 0) span = std::min(span, std::sqrt(2 * cell_ / acc));
+  if (free_time_ > 0) span = std::min(span, kFilterFreeTimes * free_time_);
   return span;
 }
 

@@ -43,6 +43,11 @@ inline constexpr double kFilterCellReaches = 4;
 // A body's box is made to last until it may have moved one cell (or the search's window ends),
 // and at most this long (seconds): a body at rest gets a box that lasts, not an infinite one.
 inline constexpr double kMaxFilterSpan = 0x1p40;
+// ... and at most this many times the bodies' mean time between changes of motion (a running
+// mean over the run): a body in a dense gas collides long before it crosses a cell, and a box
+// made for the whole crossing meets partners it will never reach. A box that ends before its
+// body's next collision is remade (expiry); a shorter one meets fewer partners.
+inline constexpr double kFilterFreeTimes = 1;
 // A box over more cells than this (a long wall, a fast body, a search up to a far horizon) is
 // kept in a list of wide bodies, paired with every body, instead of in the grid.
 inline constexpr std::int64_t kMaxFilterCells = 256;
@@ -108,6 +113,8 @@ class SpatialFilter {
     PointPath<Interval> path;
   };
   mutable std::vector<CachedPath> paths_;  // path_at's, invalidated by moved()
+  std::vector<double> last_moved_;          // when each body's motion last changed (-inf: never)
+  double free_time_ = 0;                    // the running mean time between changes (0: none yet)
   double cell_ = 1;
   std::vector<Entry> entries_;
   std::unordered_map<std::uint64_t, std::vector<BodyIndex>> grid_;

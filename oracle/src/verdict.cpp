@@ -1,6 +1,7 @@
 #include "judging.hpp"
 #include "roots.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -14,8 +15,21 @@ Dyadic representable(const Dyadic& t, const TimeFormat& f) { return round_to_for
 
 long long abs_ll(long long v) { return v < 0 ? -v : v; }
 
-// |n / d| (d != 0) as mpq_class's get_d gives it (rounded towards zero).
+// |n / d| (d != 0) as mpq_class's get_d gives it (rounded towards zero). Without a fraction in
+// lowest terms where the answer is a normal double: q = floor(|N| 2^k / |D|) for mantissas N, D
+// has at least 54 bits, and truncating q to 53 bits truncates the exact quotient (the 53-bit grid
+// there is made of integers, so no grid point lies between q and the quotient).
 double quotient_magnitude(const Dyadic& n, const Dyadic& d) {
+  const long nb = static_cast<long>(mpz_sizeinbase(n.mantissa().get_mpz_t(), 2));
+  const long db = static_cast<long>(mpz_sizeinbase(d.mantissa().get_mpz_t(), 2));
+  const long k = std::max(0L, db - nb + 54);
+  mpz_class quot;
+  mpz_mul_2exp(quot.get_mpz_t(), n.mantissa().get_mpz_t(), static_cast<mp_bitcnt_t>(k));
+  mpz_tdiv_q(quot.get_mpz_t(), quot.get_mpz_t(), d.mantissa().get_mpz_t());
+  long exp = 0;
+  const double top = std::abs(mpz_get_d_2exp(&exp, quot.get_mpz_t()));  // in [0.5, 1), truncated to 53 bits
+  const long scale = exp + n.exponent() - d.exponent() - k;         // |n / d| truncated = top * 2^scale
+  if (scale - 1 >= -1022 && scale - 1 <= 1023) return std::ldexp(top, static_cast<int>(scale));
   mpq_class q(::abs(n.mantissa()), ::abs(d.mantissa()));
   q.canonicalize();
   const long shift = n.exponent() - d.exponent();

@@ -66,6 +66,15 @@ template <class T> Dyadic Dyadic::from(const T& x) {
   T f = frexp(x, &e);  // x = f * 2^e with 0.5 <= |f| < 1; exact
   const bool negative = f < 0;
   if (negative) f = -f;
+  if constexpr (std::numeric_limits<T>::is_iec559 && std::numeric_limits<T>::radix == 2 &&
+                std::numeric_limits<T>::digits <= std::numeric_limits<unsigned long>::digits) {
+    // float, double, x87 long double: f * 2^digits is an integer below 2^digits (a subnormal's
+    // significand has fewer bits), so scaling and converting it are exact.
+    constexpr int kDigits = std::numeric_limits<T>::digits;
+    mpz_class m(static_cast<unsigned long>(ldexp(f, kDigits)));
+    if (negative) mpz_neg(m.get_mpz_t(), m.get_mpz_t());
+    return Dyadic(std::move(m), static_cast<long>(e) - kDigits);
+  }
   mpz_class m = 0;
   long exponent = e;
   // Peel 32 bits at a time: scaling by a power of two, floor and subtracting the integer part
