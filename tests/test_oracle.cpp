@@ -9,6 +9,7 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <string>
@@ -121,6 +122,32 @@ TEST(OracleNumbers, FormatOrdinalsAndRounding) {
   EXPECT_EQ(round_to_format(Dyadic(1) + Dyadic(mpz_class(1), -53), d), Dyadic(1));
   EXPECT_EQ(round_to_format(Dyadic(1) + Dyadic(mpz_class(3), -54), d), Dyadic::from(std::nextafter(1.0, 2.0)));
   EXPECT_EQ(format_value(format_ordinal(Dyadic::from(0.1), d), d), Dyadic::from(0.1));
+}
+
+// format_step(x, k) is x's k-th neighbour in the format: std::nextafter applied |k| times (an
+// independent count), for float, double and long double, from random values, from powers of
+// two (binade ends, either way) and around the smallest normal and the subnormals.
+template <class T> void expect_steps_are_nextafter(std::uint64_t seed) {
+  const TimeFormat f = TimeFormat::of<T>();
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.5, 1.0);
+  std::uniform_int_distribution<int> expo(std::numeric_limits<T>::min_exponent - 4, 60);
+  std::vector<T> starts = {T(1), T(2), T(0.5), std::numeric_limits<T>::min(), std::numeric_limits<T>::denorm_min(),
+                           std::nextafter(std::numeric_limits<T>::min(), T(0)), std::nextafter(T(1), T(0))};
+  for (int n = 0; n < 500; ++n) starts.push_back(std::ldexp(static_cast<T>(unit(rng)), expo(rng)));
+  for (const T x : starts)
+    for (long k = -3; k <= 3; ++k) {
+      T y = x;
+      const T towards = (k < 0 ? -1 : 1) * std::numeric_limits<T>::infinity();
+      for (long j = 0; j < (k < 0 ? -k : k); ++j) y = std::nextafter(y, towards);
+      EXPECT_EQ(format_step(Dyadic::from(x), k, f), Dyadic::from(y)) << x << " + " << k;
+    }
+}
+
+TEST(OracleNumbers, FormatStepIsNextafterRepeated) {
+  expect_steps_are_nextafter<float>(1);
+  expect_steps_are_nextafter<double>(2);
+  expect_steps_are_nextafter<long double>(3);
 }
 
 // ---------------------------------------------------------------- known contact times

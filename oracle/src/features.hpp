@@ -106,13 +106,14 @@ ContactPolys<N> point_edge(const PointPath<N>& p, const PointPath<N>& a, const V
 }
 
 template <class N> ContactPolys<N> contact_polys(const Feature& ft, Frame& frame) {
-  const PointPath<N> p = point_of<N>(frame, ft.point.body, ft.point.vertex);
+  std::optional<PointPath<N>> p_store, q_store;
+  const PointPath<N>& p = point_ref<N>(frame, ft.point.body, ft.point.vertex, p_store);
   const BodyModel<N>& pb = frame.body<N>(ft.point.body);
   if (!ft.to_edge) {
     const BodyModel<N>& qb = frame.body<N>(ft.other.body);
     const N rp = ft.point.vertex < 0 ? pb.radius : N{};
     const N rq = ft.other.vertex < 0 ? qb.radius : N{};
-    return point_point(p, point_of<N>(frame, ft.other.body, ft.other.vertex), rp + rq);
+    return point_point(p, point_ref<N>(frame, ft.other.body, ft.other.vertex, q_store), rp + rq);
   }
   const BodyModel<N>& eb = frame.body<N>(ft.edge_body);
   const PointPath<N> a = point_of<N>(frame, ft.edge_body, ft.edge);

@@ -145,4 +145,12 @@ template <class N> PointPath<N> point_of(Frame& f, BodyIndex body, int vertex) {
   return point_path(f.body<N>(body), reference_of<N>(f, body), vertex);
 }
 
+// The same without a copy where the point is the reference point itself (a centre): the frame's
+// path, or else the vertex's path made in `store`.
+template <class N>
+const PointPath<N>& point_ref(Frame& f, BodyIndex body, int vertex, std::optional<PointPath<N>>& store) {
+  if (vertex < 0) return reference_of<N>(f, body);
+  return store.emplace(point_of<N>(f, body, vertex));
+}
+
 }  // namespace pge::oracle::detail

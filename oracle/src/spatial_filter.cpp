@@ -139,11 +139,8 @@ std::vector<BodyPair> SpatialFilter::pairs_within(const Dyadic& now, const Dyadi
   // Pairs not vouched for up to w; a bound made before now is remade from now first. Every
   // entry up to w is taken off the heap and the live ones go back after the sweep.
   std::vector<BodyPair> out;
-  struct Live {
-    std::uint64_t key;
-    double bound, made;
-  };
-  std::vector<Live> live;
+  std::vector<Live>& live = live_;  // scratch, kept between calls
+  live.clear();
   while (!by_time_.empty() && by_time_.front().time <= w) {
     const Timed top = by_time_.front();
     std::pop_heap(by_time_.begin(), by_time_.end(), std::greater<>());

@@ -120,6 +120,11 @@ class SpatialFilter {
   std::unordered_map<std::uint64_t, std::vector<BodyIndex>> grid_;
   std::vector<BodyIndex> wide_;
   std::vector<BodyIndex> near_;  // make_entry's candidates (scratch)
+  struct Live {  // a bound pairs_within took off the heap, to go back on it
+    std::uint64_t key;
+    double bound, made;
+  };
+  std::vector<Live> live_;  // pairs_within's (scratch)
   std::unordered_map<std::uint64_t, PairBound> bounds_;
   std::vector<Timed> by_time_;  // a min-heap (std::push_heap with std::greater)
   std::uint64_t next_stamp_ = 0;

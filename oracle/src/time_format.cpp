@@ -66,6 +66,15 @@ Dyadic format_value(const mpz_class& ordinal, const TimeFormat& f) {
 }
 
 Dyadic format_step(const Dyadic& x, long k, const TimeFormat& f) {
+  // A positive normal x moved by k quanta within its binade [2^b, 2^(b+1)], its end included (the
+  // next binade's first value, k ordinals on): x + k 2^q, without the ordinals.
+  if (x.sign() > 0 && is_representable(x, f)) {
+    const long b = binade(x);
+    if (b >= f.min_exponent - 1) {
+      const Dyadic y = x + Dyadic(mpz_class(k), quantum_exponent(b, f));
+      if (y.sign() > 0 && (binade(y) == b || (y.mantissa() == 1 && y.exponent() == b + 1))) return y;
+    }
+  }
   return format_value(format_ordinal(x, f) + k, f);
 }
 

@@ -51,7 +51,9 @@ Dyadic rounded(const ExactTime& exact, const Dyadic& guess, const TimeFormat& f)
 
 long long ulps_from(const Dyadic& engine, const ExactTime& exact, const TimeFormat& f) {
   const Dyadic e = representable(engine, f);
-  const mpz_class d = format_ordinal(e, f) - format_ordinal(rounded(exact, e, f), f);
+  const Dyadic r = rounded(exact, e, f);
+  if (r == e) return 0;  // the common answer, without the two ordinals
+  const mpz_class d = format_ordinal(e, f) - format_ordinal(r, f);
   if (d > kUlpsClamp) return kUlpsClamp;
   if (d < -kUlpsClamp) return -kUlpsClamp;
   return d.get_si();
