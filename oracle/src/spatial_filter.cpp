@@ -168,7 +168,13 @@ double SpatialFilter::box_span(BodyIndex i) const {
   double span = kMaxFilterSpan;
   if (speed > 0) span = std::min(span, cell_ / speed);
   if (acc > 0) span = std::min(span, std::sqrt(2 * cell_ / acc));
-  if (free_time_ > 0) span = std::min(span, kFilterFreeTimes * free_time_);
+  // At most the mean free time, but never below the time to move one bounding radius: a box
+  // that short hardly shrinks, and would only be remade more often (a body at rest keeps a box
+  // that lasts).
+  double radius_time = kMaxFilterSpan;
+  if (speed > 0) radius_time = std::min(radius_time, reach_[i] / speed);
+  if (acc > 0) radius_time = std::min(radius_time, std::sqrt(2 * reach_[i] / acc));
+  if (free_time_ > 0) span = std::min(span, std::max(kFilterFreeTimes * free_time_, radius_time));
   return span;
 }
 

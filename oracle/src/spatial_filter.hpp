@@ -44,9 +44,10 @@ inline constexpr double kFilterCellReaches = 4;
 // and at most this long (seconds): a body at rest gets a box that lasts, not an infinite one.
 inline constexpr double kMaxFilterSpan = 0x1p40;
 // ... and at most this many times the bodies' mean time between changes of motion (a running
-// mean over the run): a body in a dense gas collides long before it crosses a cell, and a box
-// made for the whole crossing meets partners it will never reach. A box that ends before its
-// body's next collision is remade (expiry); a shorter one meets fewer partners.
+// mean over the run), though never less than the time to move one bounding radius: a body in a
+// dense gas collides long before it crosses a cell, and a box made for the whole crossing meets
+// partners it will never reach. A box that ends before its body's next collision is remade
+// (expiry); a shorter one meets fewer partners.
 inline constexpr double kFilterFreeTimes = 1;
 // A box over more cells than this (a long wall, a fast body, a search up to a far horizon) is
 // kept in a list of wide bodies, paired with every body, instead of in the grid.
