@@ -114,14 +114,14 @@ SpatialFilter::SpatialFilter(const std::vector<BodyModel<Interval>>& bodies, con
 }
 
 void SpatialFilter::moved(BodyIndex i, const Dyadic& now) {
+  const Interval t = enclose_time(now);
   // The mean time between changes of motion, an exponential running mean (only a speed matter).
-  const double t = enclose_time(now).lo();
-  if (const double dt = t - last_moved_[i]; dt > 0 && std::isfinite(dt))
+  if (const double dt = t.lo() - last_moved_[i]; dt > 0 && std::isfinite(dt))
     free_time_ = free_time_ > 0 ? 0.98 * free_time_ + 0.02 * dt : dt;
-  last_moved_[i] = t;
+  last_moved_[i] = t.lo();
   paths_[i].valid = false;
   drop_entry(i);
-  make_entry(i, enclose_time(now), -kInf);
+  make_entry(i, t, -kInf);
 }
 
 std::vector<BodyPair> SpatialFilter::pairs_within(const Dyadic& now, const Dyadic& tau_hi) {
