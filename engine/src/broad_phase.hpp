@@ -192,6 +192,12 @@ class CellGrid {
 // nothing if it stays inside up to limit. 0 if c0 is already outside.
 inline std::optional<double> earliest_exit(double c0, double c1, double c2, double lo, double hi, double limit) {
   if (!(c0 >= lo && c0 <= hi)) return 0.0;
+  if (c2 == 0) {  // a straight path (a gas without gravity): one side can be reached, the one ahead
+    if (c1 == 0) return std::nullopt;
+    const double r = ((c1 > 0 ? hi : lo) - c0) / c1;  // the general case's -(c0 - bound) / c1, exactly
+    if (r > 0 && r <= limit) return r;
+    return std::nullopt;
+  }
   std::optional<double> best;
   // Smallest positive root of c2 s^2 + c1 s + d = 0, from the numerically stable pair.
   auto root = [&](double d) {
