@@ -367,6 +367,26 @@ template <class T> class CirclePairFilter {
   using B = Bounded<E>;
   using V = Vec2<B>;
   CirclePairFilter(const Path<T>& a, const Path<T>& b, const T& at) : at_(E(at)) {
+    const auto still = [](const Path<T>& x) { return x.fixed || x.acc == Vec2<T>{}; };
+    if (still(a) && still(b)) {
+      // Neither body accelerates (the gas): the same operations as below, in straight-line code
+      // (no Motion records: x87 values kept in registers, not stored and loaded again).
+      const auto displacement = [&](const Path<T>& x) {
+        if (x.fixed) return V{};
+        const B tau = difference(at_, E(x.t0));
+        return V{exact_times(E(x.v0.x), tau), exact_times(E(x.v0.y), tau)};
+      };
+      const auto velocity = [](const Path<T>& x) { return x.fixed ? Vec2<E>{} : Vec2<E>{E(x.v0.x), E(x.v0.y)}; };
+      const Vec2<E> va = velocity(a), vb = velocity(b);
+      const V d0 = V{difference(b.p0.x, a.p0.x), difference(b.p0.y, a.p0.y)} + (displacement(b) - displacement(a));
+      const B rr = B::of(E(a.shape->radius)) + B::of(E(b.shape->radius));
+      const V d1{difference(vb.x, va.x), difference(vb.y, va.y)};
+      c_[0] = dot(d0, d0) - rr * rr;
+      c_[1] = twice(dot(d0, d1));
+      c_[2] = dot(d1, d1);
+      degree_ = 2;
+      return;
+    }
     const Motion ma = motion(a), mb = motion(b);
     const V d0 = V{difference(b.p0.x, a.p0.x), difference(b.p0.y, a.p0.y)} + (mb.displacement - ma.displacement);
     const B rr = B::of(E(a.shape->radius)) + B::of(E(b.shape->radius));

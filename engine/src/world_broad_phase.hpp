@@ -25,7 +25,8 @@ inline auto World<T>::Impl::visit_cells(BodyIndex i, std::uint32_t c, std::uint3
   next_scan();
   const auto keep = [&](BodyIndex j) { list.push_back(j); };
   grid.visit_around(c, [&](BodyIndex j, bool shared) { visit_once(i, j, shared, keep); }, except);
-  for (BodyIndex j : list) prefetch_hot(bodies[j]);
+  if (prefetching)
+    for (BodyIndex j : list) prefetch_hot(bodies[j]);
   for (BodyIndex j : list) f(j);
   candidates.swap(list);
 }

@@ -33,7 +33,16 @@ inline auto World<T>::Impl::predict(BodyIndex lo, BodyIndex hi, const T& limit) 
       // turning-overlap rule (roots.hpp) belongs to the rounded prediction below.
       if (exact || !overlapping) return exact;
     }
-    c = circle_pair_contact(solver, p, horizon - now);  // the polynomial built once
+    // Apart and approaching without relative acceleration (most of a gas's predictions): the
+    // robust walk's answer by its short form (roots_robust.hpp).
+    const std::optional<std::optional<T>> parabola =
+        solver == SolverKind::Robust ? detail::approaching_parabola_root(p, T(horizon - now)) : std::nullopt;
+    if (parabola) {
+      if (!*parabola) return std::nullopt;
+      c = PredictedContact<T>{**parabola, ContactKind::CircleCircle, 0, 0, false};
+    } else {
+      c = circle_pair_contact(solver, p, horizon - now);  // the polynomial built once
+    }
   } else if (solver == SolverKind::Fast) {
     c = predict_contact(solver, a.shape, ka, b.shape, kb, horizon - now);
   } else {
