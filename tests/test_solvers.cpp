@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <optional>
 #include <random>
 #include <type_traits>
 #include <utility>
@@ -359,20 +358,21 @@ TYPED_TEST(Solvers, ApproachingParabolaShortFormIsTheRobustWalk) {
     p.c[0] = (T(dx) * T(dx) + T(dy) * T(dy)) - T(r) * T(r);
     p.c[1] = T(2) * (T(dx) * T(vx) + T(dy) * T(vy));
     p.c[2] = T(vx) * T(vx) + T(vy) * T(vy);
-    const std::optional<std::optional<T>> fast = detail::approaching_parabola_root(p, T(hi));
-    if (!fast) {
+    T root{};
+    const detail::ParabolaRoot fast = detail::approaching_parabola_root(p, T(hi), root);
+    if (fast == detail::ParabolaRoot::Unsure) {
       ++left;
       continue;
     }
     ++answered;
     const RootOutcome<T> general = earliest_downward_root(SolverKind::Robust, p, T(0), T(hi));
-    if (!*fast) {
+    if (fast == detail::ParabolaRoot::None) {
       EXPECT_EQ(general.status, RootStatus::None) << i;
       continue;
     }
     ++roots;
     ASSERT_EQ(general.status, RootStatus::Root) << i;
-    EXPECT_EQ(general.t, **fast) << i;
+    EXPECT_EQ(general.t, root) << i;
     EXPECT_FALSE(general.at_start_overlap) << i;
   }
   // Most draws are taken (the test compares something), some with a root, and the near grazes

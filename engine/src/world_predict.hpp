@@ -35,11 +35,13 @@ inline auto World<T>::Impl::predict(BodyIndex lo, BodyIndex hi, const T& limit) 
     }
     // Apart and approaching without relative acceleration (most of a gas's predictions): the
     // robust walk's answer by its short form (roots_robust.hpp).
-    const std::optional<std::optional<T>> parabola =
-        solver == SolverKind::Robust ? detail::approaching_parabola_root(p, T(horizon - now)) : std::nullopt;
-    if (parabola) {
-      if (!*parabola) return std::nullopt;
-      c = PredictedContact<T>{**parabola, ContactKind::CircleCircle, 0, 0, false};
+    T root{};
+    const detail::ParabolaRoot parabola = solver == SolverKind::Robust
+                                              ? detail::approaching_parabola_root(p, T(horizon - now), root)
+                                              : detail::ParabolaRoot::Unsure;
+    if (parabola == detail::ParabolaRoot::None) return std::nullopt;
+    if (parabola == detail::ParabolaRoot::Root) {
+      c = PredictedContact<T>{root, ContactKind::CircleCircle, 0, 0, false};
     } else {
       c = circle_pair_contact(solver, p, horizon - now);  // the polynomial built once
     }

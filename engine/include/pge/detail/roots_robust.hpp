@@ -11,8 +11,8 @@
 #include <boost/math/special_functions/next.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <optional>
 #include <type_traits>
 #include <utility>
 
@@ -337,37 +337,40 @@ bool robust_solve(const Poly<T>& p_in, const T& lo, const T& hi, StartRule rule,
 // relative acceleration), by the same steps as robust_walk takes on it (the degree reduction,
 // the signs at 0, at hi and at the vertex with their doubts, the closed-form root) without its
 // general machinery: the same root, bit for bit (tests/test_solvers.cpp compares the two).
-// Outer nullopt: a case it leaves to robust_solve (a doubtful sign, the degree reduced, a
-// closed form outside its piece); inner nullopt: no root in [0, hi].
-template <class T> std::optional<std::optional<T>> approaching_parabola_root(const Poly<T>& p, const T& hi) {
+// Unsure: a case it leaves to robust_solve (a doubtful sign, the degree reduced, a closed form
+// outside its piece); None: no root in [0, hi]; Root: the root, in `root`.
+enum class ParabolaRoot : std::uint8_t { Unsure, None, Root };
+template <class T> ParabolaRoot approaching_parabola_root(const Poly<T>& p, const T& hi, T& root) {
   const T &c0 = p.c[0], &c1 = p.c[1], &c2 = p.c[2];
-  if (p.degree != 2 || !(c0 > T(0)) || !(c1 < T(0)) || !(c2 > T(0)) || !(hi > T(0))) return std::nullopt;
-  if (reduced_degree(p, T(0), hi) != 2) return std::nullopt;
+  if (p.degree != 2 || !(c0 > T(0)) || !(c1 < T(0)) || !(c2 > T(0)) || !(hi > T(0))) return ParabolaRoot::Unsure;
+  if (reduced_degree(p, T(0), hi) != 2) return ParabolaRoot::Unsure;
   T abs_sum(0);
   for (int k = 0; k <= 2; ++k) abs_sum += abs_of(p.c[k]);
   T value;
-  if (doubtful(p, T(0), abs_sum, value)) return std::nullopt;
-  const auto root_before = [&](const T& b) -> std::optional<std::optional<T>> {  // downward_root_in_piece
+  if (doubtful(p, T(0), abs_sum, value)) return ParabolaRoot::Unsure;
+  const auto root_before = [&](const T& b) {  // downward_root_in_piece's closed form
     T r1, r2;
-    if (quadratic_roots(c2, c1, c0, r1, r2) == 2 && r1 >= T(0) && r1 <= b) return std::optional<T>(r1);
-    return std::nullopt;
+    if (quadratic_roots(c2, c1, c0, r1, r2) != 2 || !(r1 >= T(0) && r1 <= b)) return ParabolaRoot::Unsure;
+    root = r1;
+    return ParabolaRoot::Root;
   };
   T p_hi;
-  if (doubtful(p, hi, abs_sum, p_hi)) return std::nullopt;
+  if (doubtful(p, hi, abs_sum, p_hi)) return ParabolaRoot::Unsure;
   const T twice_c2 = c2 * T(2);
   const bool has_min = twice_c2 * hi + c1 > T(0);  // p' < 0 at 0 (c1) and > 0 at hi
   if (p_hi < T(0)) return root_before(hi);
   if (p_hi == T(0)) {
-    if (has_min) return std::nullopt;
-    return std::optional<T>(hi);
+    if (has_min) return ParabolaRoot::Unsure;
+    root = hi;
+    return ParabolaRoot::Root;
   }
-  if (!has_min) return std::optional<T>();
+  if (!has_min) return ParabolaRoot::None;
   T vertex = -c1 / twice_c2;
   vertex = vertex < T(0) ? T(0) : (vertex > hi ? hi : vertex);
   T p_vertex;
-  if (doubtful(p, vertex, abs_sum, p_vertex)) return std::nullopt;
+  if (doubtful(p, vertex, abs_sum, p_vertex)) return ParabolaRoot::Unsure;
   if (p_vertex < T(0)) return root_before(vertex);
-  return std::optional<T>();
+  return ParabolaRoot::None;
 }
 
 }  // namespace detail
