@@ -363,6 +363,75 @@ std::uint64_t signs_of_three_body_run(double x) {
   return refine::filtered_signs + refine::exact_signs - before;
 }
 
+// ContactSigner::rounded_crossing, the circle pair's answer without the walk, against the walk
+// itself run on exact signs (correctly_rounded_crossing with ExactSigner: the expected value
+// comes from exact arithmetic, not from the filter): wherever the short form answers, the same
+// time. Predicted times from on the crossing to 2^20 ulps away on either side (the walk's
+// doubling steps then overshoot far), with and without a fixed partner, at the origin and far
+// from it; accelerating pairs must be left to the walk.
+TYPED_TEST(RefineFilter, CircleShortFormIsTheWalk) {
+  using T = TypeParam;
+  if constexpr (!refine::kFilterPays<T>) {
+    GTEST_SKIP() << "no wider filter type: the walk answers";
+  } else {
+    Random rng(20261206);
+    std::uint64_t asked = 0, answered = 0, accelerating_answered = 0, near_asked = 0, near_answered = 0;
+    for (int n = 0; n < 600; ++n) {
+      const double shift = (n % 3 == 0) ? 0.0 : (n % 3 == 1 ? 37.3 : 1000.0);
+      const double t0a = rng.uniform(0, 4), t0b = rng.uniform(0, 4);
+      Case c = make_case(rng, 0, shift, t0a, t0b);
+      if (n % 4 == 1) c.b.acceleration = rng.vec(-0.1, 0.1);
+      const bool accelerating = !(c.a.acceleration == Vec2d{}) || !(c.b.acceleration == Vec2d{});
+      if (n % 4 == 2) {
+        c.b.fixed = true;
+        c.b.velocity = {};
+      }
+      const BodyShape<T> sa = make_body_shape<T>(c.a), sb = make_body_shape<T>(c.b);
+      const Path<T> a = path(sa, c.a, T(t0a)), b = path(sb, c.b, T(t0b));
+      Scheduled<T> s;
+      s.contact = ContactKind::CircleCircle;
+      ExactSigner<T> exact{refine::exact_body(a), refine::exact_body(b), s};
+      const int s_start = exact(T(4));
+      T end = T(8);
+      for (int k = 1; k <= 64; ++k) {
+        end = T(4 + k / 16.0);
+        if (exact(end) != s_start) break;
+      }
+      const std::optional<std::vector<T>> around = times_around_crossing(exact, T(4), end);
+      if (!around) continue;
+      const T lo = (*around)[0];
+      const T now = T(4);
+      for (int k = 0; k < 8; ++k) {
+        const double ulps = k == 0 ? 0.0 : std::ldexp(rng.uniform(-1, 1), static_cast<int>(rng.below(21)));
+        const T predicted = T(lo + T(ulps) * (boost::math::float_next(lo) - lo));
+        if (!(predicted > now)) continue;
+        ++asked;
+        // A downward crossing predicted within a few ulps, as the engine's predictions are.
+        const bool near = std::abs(ulps) <= 4 && !accelerating && s_start > 0;
+        near_asked += near;
+        ContactSigner<T> sign(a, b, s);
+        const std::optional<T> short_form = sign.rounded_crossing(predicted, now);
+        if (!short_form) continue;
+        ++answered;
+        near_answered += near;
+        if (accelerating) ++accelerating_answered;
+        const std::optional<T> walk = refine::correctly_rounded_crossing(predicted, now, exact);
+        ASSERT_TRUE(walk.has_value()) << "case " << n << ", predicted " << predicted;
+        ASSERT_EQ(*short_form, *walk) << "case " << n << ", predicted " << predicted << ", " << ulps << " ulps off";
+      }
+    }
+    EXPECT_EQ(accelerating_answered, 0u) << "an accelerating pair is a quartic: the walk's";
+    EXPECT_GT(near_asked, 200u) << "too few straight paths crossing: the test lost its cases";
+    // A prediction within a few ulps (the engine's) is nearly always answered; far ones may not
+    // be (the Newton guess from far off misses by more than an ulp): the walk then runs.
+    EXPECT_GT(near_answered, near_asked * 9 / 10) << near_answered << " answered of " << near_asked << " within 4 ulps";
+    EXPECT_GT(answered, 0u);
+    this->RecordProperty("answered", std::to_string(answered) + " of " + std::to_string(asked) + ", " +
+                                         std::to_string(near_answered) + " of " + std::to_string(near_asked) +
+                                         " within 4 ulps");
+  }
+}
+
 TEST(RefineWalkInWorld, AsShortFarFromTheOriginAsAtIt) {
   const std::uint64_t near = signs_of_three_body_run(0), far = signs_of_three_body_run(1000);
   EXPECT_GT(near, 0u);

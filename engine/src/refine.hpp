@@ -415,6 +415,37 @@ template <class T> class CirclePairFilter {
     for (int k = degree_ - 1; k >= 0; --k) f = f * delta + c_[k];
     return f.decided_sign();
   }
+  // What correctly_rounded_crossing(at, now, sign) returns, where this expansion (about `at`, the
+  // predicted time) proves it without the walk: two signs instead of the walk's three or more.
+  // The guess g is the T nearest at + delta, delta = -c0 / c1 (a Newton step: delta is a few
+  // ulps). It is the walk's answer when the function is certainly positive at the midpoint below
+  // g and negative at the midpoint above (one crossing between them: the walk's bracket closes
+  // on g and its midpoint rule keeps g), and certainly decreasing over every time the walk could
+  // probe from `at` (its steps double from about an ulp, so they overshoot the crossing by at
+  // most about its distance from `at`: 4 |g - at| plus 16 ulps on each side covers them; the
+  // slope c1 + 2 c2 delta rises with delta, c2 = |d1|^2 >= 0, so its sign at the right end
+  // decides). Only without acceleration (a quadratic); nothing where any of it is not proven,
+  // and the walk runs.
+  std::optional<T> rounded_crossing(const T& now) const {
+    using std::abs;
+    if (degree_ != 2 || !(c_[1].v < E(0))) return std::nullopt;
+    const T at = T(at_);
+    const T g = T(at_ - c_[0].v / c_[1].v);
+    if (!(g > now) || !(at > now)) return std::nullopt;
+    const T below = boost::math::float_prior(g), above = boost::math::float_next(g);
+    if (!(below > now)) return std::nullopt;
+    const T half_below = (g - below) / T(2), half_above = (above - g) / T(2);
+    if (!(half_below + half_below == g - below) || !(half_above + half_above == above - g)) return std::nullopt;
+    const T unit = std::max(abs(at) * std::numeric_limits<T>::epsilon(), above - below);
+    const T distance = abs(g - at);
+    if (!(distance <= T(1048576) * unit)) return std::nullopt;
+    const T right = std::max(at, above) + (T(4) * distance + T(16) * unit);
+    const B slope = c_[1] + twice(c_[2] * difference(E(right), at_));
+    if (slope.decided_sign() != std::optional<int>(-1)) return std::nullopt;
+    if (sign(below, half_below) != std::optional<int>(1)) return std::nullopt;
+    if (sign(g, half_above) != std::optional<int>(-1)) return std::nullopt;
+    return g;
+  }
 
  private:
   // One body's terms at `at`: its displacement since t0 and the exact values it came from (all
@@ -498,6 +529,20 @@ template <class T> class ContactSigner {
       }
     }
     return exact(dt == T(0) ? Exact::of(t) : Exact::of(t) + Exact::of(dt));
+  }
+  // correctly_rounded_crossing(predicted, now, *this) without its walk, where the circle pair's
+  // expansion proves the answer (CirclePairFilter::rounded_crossing); nothing otherwise.
+  std::optional<T> rounded_crossing(const T& predicted, const T& now) {
+    if constexpr (kFilterPays<T>) {
+      if (s_.contact == ContactKind::CircleCircle && arithmetic_has_its_digits<typename FilterScalar<T>::type>()) {
+        if (!circles_) circles_.emplace(a_, b_, predicted);
+        if (std::optional<T> t = circles_->rounded_crossing(now)) {
+          filtered_signs += 2;
+          return t;
+        }
+      }
+    }
+    return std::nullopt;
   }
   int exact(const Exact& t) {
     ++exact_signs;

@@ -10,6 +10,7 @@ namespace pge {
 template <class T> inline auto World<T>::Impl::refined_time(const Scheduled<T>& s) const -> std::optional<T> {
   const refine::Path<T> a = path_of(bodies[s.lo]), b = path_of(bodies[s.hi]);
   refine::ContactSigner<T> sign(a, b, s);
+  if (const std::optional<T> t = sign.rounded_crossing(s.time, now)) return t;
   return refine::correctly_rounded_crossing(s.time, now, sign);
 }
 
