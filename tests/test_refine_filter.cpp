@@ -164,6 +164,34 @@ template <class T> std::optional<std::vector<T>> times_around_crossing(ExactSign
   return ts;
 }
 
+// The circle pairs of the expansion's tests: case n of make_case's two moving circles, 1, 37.3 or
+// 1000 units from the origin; every fourth one's second circle accelerating, every fourth (the
+// next) one's fixed.
+Case circle_pair_case(Random& rng, int n, double& t0a, double& t0b) {
+  const double shift = (n % 3 == 0) ? 0.0 : (n % 3 == 1 ? 37.3 : 1000.0);
+  t0a = rng.uniform(0, 4);
+  t0b = rng.uniform(0, 4);
+  Case c = make_case(rng, 0, shift, t0a, t0b);
+  if (n % 4 == 1) c.b.acceleration = rng.vec(-0.1, 0.1);
+  if (n % 4 == 2) {
+    c.b.fixed = true;
+    c.b.velocity = {};
+  }
+  return c;
+}
+
+// times_around_crossing for circles that enter each other (if they do) between t = 4 and 8: the
+// first of 64 sample times at which the sign differs from t = 4's closes the bracket.
+template <class T> std::optional<std::vector<T>> times_around_crossing_after_four(ExactSigner<T>& exact) {
+  const int s_start = exact(T(4));
+  T end = T(8);
+  for (int k = 1; k <= 64; ++k) {
+    end = T(4 + k / 16.0);
+    if (exact(end) != s_start) break;
+  }
+  return times_around_crossing(exact, T(4), end);
+}
+
 template <class T> class RefineFilter : public ::testing::Test {};
 using Scalars = ::testing::Types<float, double, long double, Quad>;
 TYPED_TEST_SUITE(RefineFilter, Scalars);
@@ -245,28 +273,14 @@ TYPED_TEST(RefineFilter, CircleExpansionAgreesWithExactSigns) {
     Random rng(20261205);
     std::uint64_t asked = 0, by_expansion = 0, by_view = 0, crossings = 0;
     for (int n = 0; n < 800; ++n) {
-      const double shift = (n % 3 == 0) ? 0.0 : (n % 3 == 1 ? 37.3 : 1000.0);
-      const double t0a = rng.uniform(0, 4), t0b = rng.uniform(0, 4);
-      Case c = make_case(rng, 0, shift, t0a, t0b);
-      if (n % 4 == 1) c.b.acceleration = rng.vec(-0.1, 0.1);
-      if (n % 4 == 2) {
-        c.b.fixed = true;
-        c.b.velocity = {};
-      }
+      double t0a = 0, t0b = 0;
+      const Case c = circle_pair_case(rng, n, t0a, t0b);
       const BodyShape<T> sa = make_body_shape<T>(c.a), sb = make_body_shape<T>(c.b);
       const Path<T> a = path(sa, c.a, T(t0a)), b = path(sb, c.b, T(t0b));
       Scheduled<T> s;
       s.contact = ContactKind::CircleCircle;
       ExactSigner<T> exact{refine::exact_body(a), refine::exact_body(b), s};
-      // The circles enter each other (if they do) between t = 4 and 8: the first of 64 sample
-      // times at which they overlap closes the bracket.
-      const int s_start = exact(T(4));
-      T end = T(8);
-      for (int k = 1; k <= 64; ++k) {
-        end = T(4 + k / 16.0);
-        if (exact(end) != s_start) break;
-      }
-      const std::optional<std::vector<T>> around = times_around_crossing(exact, T(4), end);
+      const std::optional<std::vector<T>> around = times_around_crossing_after_four(exact);
       if (!around) continue;
       const std::vector<T>& ts = *around;
       const T lo = ts[0], hi = ts[1];
@@ -377,28 +391,17 @@ TYPED_TEST(RefineFilter, CircleShortFormIsTheWalk) {
     Random rng(20261206);
     std::uint64_t asked = 0, answered = 0, accelerating_answered = 0, near_asked = 0, near_answered = 0;
     for (int n = 0; n < 600; ++n) {
-      const double shift = (n % 3 == 0) ? 0.0 : (n % 3 == 1 ? 37.3 : 1000.0);
-      const double t0a = rng.uniform(0, 4), t0b = rng.uniform(0, 4);
-      Case c = make_case(rng, 0, shift, t0a, t0b);
-      if (n % 4 == 1) c.b.acceleration = rng.vec(-0.1, 0.1);
+      double t0a = 0, t0b = 0;
+      const Case c = circle_pair_case(rng, n, t0a, t0b);
       const bool accelerating = !(c.a.acceleration == Vec2d{}) || !(c.b.acceleration == Vec2d{});
-      if (n % 4 == 2) {
-        c.b.fixed = true;
-        c.b.velocity = {};
-      }
       const BodyShape<T> sa = make_body_shape<T>(c.a), sb = make_body_shape<T>(c.b);
       const Path<T> a = path(sa, c.a, T(t0a)), b = path(sb, c.b, T(t0b));
       Scheduled<T> s;
       s.contact = ContactKind::CircleCircle;
       ExactSigner<T> exact{refine::exact_body(a), refine::exact_body(b), s};
-      const int s_start = exact(T(4));
-      T end = T(8);
-      for (int k = 1; k <= 64; ++k) {
-        end = T(4 + k / 16.0);
-        if (exact(end) != s_start) break;
-      }
-      const std::optional<std::vector<T>> around = times_around_crossing(exact, T(4), end);
+      const std::optional<std::vector<T>> around = times_around_crossing_after_four(exact);
       if (!around) continue;
+      const int s_start = exact(T(4));
       const T lo = (*around)[0];
       const T now = T(4);
       for (int k = 0; k < 8; ++k) {
