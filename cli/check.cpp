@@ -135,6 +135,7 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
   c.momentum_start = vec_cast<double>(stepped.start.momentum);
   const double oracle_seconds = referee ? referee->stats().seconds : 0.0;
   c.engine_seconds = stepped.wall_seconds - oracle_seconds;
+  c.predictions = world.counts().predictions;
   c.stop_reason = world.stop_reason();
   c.stop = std::string(stop_reason_name(world.stop_reason()));
   c.time = to_double(world.time());

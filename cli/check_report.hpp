@@ -71,7 +71,8 @@ struct SceneCheck {
   oracle::EndJudgement end;
   oracle::RefereeStats oracle;
   std::vector<oracle::MotionMiss> motion_misses;  // contacts passed over before a slide off a face
-  double engine_seconds = 0;
+  double engine_seconds = 0;     // of the run's wall time, what the oracle did not take
+  std::uint64_t predictions = 0;  // the engine's pair predictions (World::counts())
   bool filter = true;
 };
 

@@ -215,15 +215,16 @@ int main(int argc, char** argv) {
       "  fixtures/scenes/peers, by PGE in every solver x scalar asked for and by Box2D and Chipmunk at\n"
       "  every setting; full report only, unless --parts names it). Quick: 500 events per scene, 12\n"
       "  random scenes, gas at 100 and 1,000, a 20,000-event drift run (about 1 minute of CPU). Full:\n"
-      "  2,000 events, 100 random scenes, gas up to 10,000, 200,000 events of drift (about 20 minutes\n"
-      "  of CPU, most of it the peers part's 1,000-ball gases and quad; shared by the cores, --jobs).\n"
+      "  2,000 events, 100 random scenes, gas up to 10,000, 200,000 events of drift (about 25 minutes\n"
+      "  of CPU, most of it quad and the peers part's 1,000-ball gases; shared by the cores, --jobs:\n"
+      "  13 minutes on 2). A judged run of minutes is the row's timing too (timed_in_judged_run).\n"
       "Progress: on a terminal (or with --progress), one line redrawn in place: rows done, the part,\n"
       "  time elapsed and an estimate of the time left; with --progress-lines, for logs, a line per part\n"
       "  every 30 s and when it ends. At the end: the path of index.html and the headline numbers, a\n"
       "  line per solver x scalar (misses, p99 and worst time error, worst ulps, events/s, Pareto).\n"
       "Parallel: --jobs N (default: one per core) measures N rows at once, each in a worker process\n"
-      "  forked from the report, the heaviest rows first; the rows, their order and every figure but\n"
-      "  the timings are those of --jobs 1. A timed run then runs beside the other workers' work\n"
+      "  forked from the report, the longest rows first (--costs); the rows, their order and every\n"
+      "  figure but the timings are those of --jobs 1. A timed run runs beside the other workers' work\n"
       "  (meta.jobs says so; pge gate measures as its baseline was measured). A worker that dies costs\n"
       "  its row (a failed run naming the signal); the rest are written and the exit code is 1.\n"
       "Sharding: --shard i/n runs every n-th item from i and writes results.json only; join the shards\n"
@@ -261,6 +262,10 @@ int main(int argc, char** argv) {
                          "For testing the gate: fast-solver (every run uses the fast solver, labels unchanged) or slow "
                          "(every timed run does its work four times)")
       ->check(CLI::IsMember({"fast-solver", "slow"}));
+  report_cmd->add_option("--costs", report.costs,
+                         "What each row cost in an earlier run of the same sweep (its costs.json): the order rows are "
+                         "measured in, the longest first, and the estimate of the time left (default: OUT/costs.json "
+                         "if there, else the bundled reports/costs-full.json for the full sweep)");
   report_cmd->add_flag("--quiet,-q", report.quiet, "Print nothing but errors");
   report_cmd->add_flag("--progress", report.progress,
                        "Show progress on stderr, redrawn in place: rows done, the part, time elapsed and left (default: "

@@ -33,6 +33,7 @@ struct ReportOptions {
   bool progress_lines = false;      // progress for logs: a line per part every 30 s and at its end
   bool headline = true;             // print the configurations' headline numbers at the end
   std::string command;              // the command line, shown on the page
+  std::string costs;                // an earlier run's costs.json (the order of work); empty: OUT's, else the bundled
 };
 
 int report_command(const ReportOptions& options);

@@ -53,6 +53,10 @@ double row_weight(RowKind kind, const std::string& scalar, std::size_t bodies) {
   return arithmetic;
 }
 
+double expected_row_seconds(RowKind kind, const std::string& scalar, std::size_t bodies, bool quick) {
+  return row_weight(kind, scalar, bodies) * prior_seconds(kind, quick);
+}
+
 std::string short_duration(double seconds) {
   if (!(seconds >= 0) || !std::isfinite(seconds)) return "?";
   const auto s = static_cast<long long>(std::llround(seconds));
@@ -65,7 +69,9 @@ ReportProgress::ReportProgress(ProgressStyle style, const std::vector<Planned>& 
     : style_(style), quick_(quick), workers_(std::max(1u, workers)), start_(Clock::now()), last_line_(start_) {
   for (const Planned& item : plan) {
     if (parts_.empty() || parts_.back().kind != item.kind) parts_.push_back({item.kind});
-    const double w = row_weight(item.kind, item.scalar, item.bodies);
+    // A cost measured before weighs the row as that many seconds at the part's prior pace.
+    const double w = item.expected_seconds >= 0 ? item.expected_seconds / prior_seconds(item.kind, quick)
+                                                : row_weight(item.kind, item.scalar, item.bodies);
     ++parts_.back().rows;
     parts_.back().weight += w;
     part_of_.push_back(parts_.size() - 1);

@@ -23,9 +23,15 @@ enum class ProgressStyle {
 
 // A row's expected cost relative to others of its part (a double row of a few bodies weighs
 // about 1): quad rows weigh 8 (software arithmetic), long double 2.5, and larger scenes more (the
-// oracle's work per event grows with the bodies, and a peer scene's steps with them). The report
-// hands rows to its workers the heaviest first, and the estimate of the time left weighs rows so.
+// oracle's work per event grows with the bodies, and a peer scene's steps with them). Where no
+// earlier run of the sweep says what a row costs (pge/report_costs.hpp), the report hands rows to
+// its workers the heaviest first by it, and the estimate of the time left weighs rows so.
 double row_weight(report::RowKind kind, const std::string& scalar, std::size_t bodies);
+
+// A row's cost in seconds as expected before anything is measured: its row_weight times its
+// part's prior seconds per weight (measured once on the bundled scenes). Rows of every part compare
+// by it.
+double expected_row_seconds(report::RowKind kind, const std::string& scalar, std::size_t bodies, bool quick);
 
 // Time in a short human form: "45s", "3m05s", "1h02m".
 std::string short_duration(double seconds);
@@ -38,6 +44,7 @@ class ReportProgress {
     report::RowKind kind;
     std::string scalar;
     std::size_t bodies = 0;
+    double expected_seconds = -1;  // what it is expected to cost (pge/report_costs.hpp); < 0: row_weight's
   };
   // quick: the sweep (it sets the prior cost of a row in a part not yet started); workers: how
   // many items are measured at once (pge report --jobs), which divides the time left.

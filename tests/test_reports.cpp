@@ -1,6 +1,7 @@
 // The report's data, merge, summary and the gate (reports/), on hand-made results: each expected
 // value follows from the definitions in gate.hpp and report_data.hpp, stated beside it.
 #include "pge/gate.hpp"
+#include "pge/report_costs.hpp"
 #include "pge/report_data.hpp"
 
 #include <gtest/gtest.h>
@@ -134,6 +135,7 @@ TEST(ReportData, ARowRoundTripsThroughOneLineExactly) {
   a.cost_seconds = 1.25;
   a.cost_cpu_seconds = 1.0 / 3;
   a.series = {{1, 1e-300}, {2, -2.5e-17}};
+  a.timed_in_judged_run = true;
   const std::string line = row_to_json_line(a);
   EXPECT_EQ(line.find('\n'), std::string::npos) << line;
   const Row b = row_from_json_line(line);
@@ -144,6 +146,7 @@ TEST(ReportData, ARowRoundTripsThroughOneLineExactly) {
   EXPECT_TRUE(std::isnan(b.overlap));
   EXPECT_EQ(b.error, a.error);
   EXPECT_EQ(b.cost_cpu_seconds, a.cost_cpu_seconds);
+  EXPECT_TRUE(b.timed_in_judged_run);
   EXPECT_EQ(b.rel_hist, a.rel_hist);
   EXPECT_EQ(b.series, a.series);
   EXPECT_THROW(row_from_json_line("{\"kind\": \"accuracy\"}"), ReportError);
@@ -161,6 +164,64 @@ TEST(ReportData, JobsAreRecordedAndDefaultToOne) {
   ASSERT_NE(at, std::string::npos) << old.substr(0, 600);
   old.erase(at, field.size());
   EXPECT_EQ(from_json_text(old, "old").meta.jobs, 1u);
+}
+
+// A row measured before timed_in_judged_run existed reads as timed alone (false).
+TEST(ReportData, TimedInJudgedRunDefaultsToFalse) {
+  Row a = sample().rows[0];
+  std::string line = row_to_json_line(a);
+  const std::string field = "\"timed_in_judged_run\":false,";
+  const std::size_t at = line.find(field);
+  ASSERT_NE(at, std::string::npos) << line;
+  line.erase(at, field.size());
+  a.timed_in_judged_run = true;
+  EXPECT_FALSE(row_from_json_line(line).timed_in_judged_run);
+}
+
+// costs.json (report_costs.hpp): the rows of at least kCostsLeastSeconds that ran, back as written
+// (to the millisecond), and only for the sweep they were measured in.
+TEST(ReportCosts, RoundTripKeepsTheCostlyRowsOfOneSweep) {
+  Results r = sample();  // quick
+  r.rows[0].cost_cpu_seconds = 12.5;
+  r.rows[1].cost_cpu_seconds = kCostsLeastSeconds / 2;  // too cheap to list
+  r.rows[2].cost_cpu_seconds = 3.0;
+  r.rows[2].error = "failed";  // a failed row's cost says nothing of the next run
+  const std::string path = ::testing::TempDir() + "pge-costs-test.json";
+  write_costs(path, r, 500);
+  const std::optional<RowCosts> c = read_costs(path, true, 500);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_EQ(c->origin, path);
+  ASSERT_EQ(c->cpu_seconds.size(), 1u);
+  EXPECT_EQ(c->cpu_seconds.at(r.rows[0].key()), 12.5);
+  EXPECT_FALSE(read_costs(path, false, 500).has_value());  // of the quick sweep, not the full one
+  EXPECT_FALSE(read_costs(path, true, 2000).has_value());  // other events per scene
+  std::remove(path.c_str());
+}
+
+TEST(ReportCosts, WhatIsNotACostsFileIsRefusedWithItsName) {
+  const std::string path = ::testing::TempDir() + "pge-costs-bad.json";
+  const auto refused = [&](const std::string& text) {
+    std::ofstream(path) << text;
+    try {
+      read_costs(path, true, 500);
+    } catch (const ReportError& e) {
+      return std::string(e.what()).find(path) != std::string::npos;
+    }
+    return false;
+  };
+  EXPECT_TRUE(refused("{\"format\": \"pge-report/1\"}"));  // results, not costs
+  EXPECT_TRUE(refused("{\"format\": \"pge-report-costs/1\", \"quick\": true"));  // cut short
+  EXPECT_TRUE(refused("{\"format\": \"pge-report-costs/1\", \"quick\": true, \"max_events\": 500, \"rows\": {\"a\": -1}}"));
+  EXPECT_TRUE(refused("{\"format\": \"pge-report-costs/1\", \"quick\": true, \"max_events\": 500, \"rows\": {\"a\": \"x\"}}"));
+  std::remove(path.c_str());
+  EXPECT_THROW(read_costs("/nonexistent/costs.json", true, 500), ReportError);
+}
+
+// The longest first; rows of equal cost keep their order (the order of the sweep's items).
+TEST(ReportCosts, LongestFirstIsStable) {
+  const std::vector<double> expected{0.5, 840, 0.5, 150, 0.01};
+  EXPECT_EQ(longest_first(expected, {0, 1, 2, 3, 4}), (std::vector<std::size_t>{1, 3, 0, 2, 4}));
+  EXPECT_EQ(longest_first(expected, {4, 2, 0}), (std::vector<std::size_t>{2, 0, 4}));  // a shard's items
 }
 
 TEST(ReportData, CorruptResultsAreRefusedWithTheirOrigin) {

@@ -59,7 +59,7 @@ json row_json(const Row& r) {
          {"energy_drift", jnum(r.energy_drift)}, {"momentum_drift", jnum(r.momentum_drift)}, {"overlap", jnum(r.overlap)}, {"tunnelled", r.tunnelled}, {"final_error", jnum(r.final_error)},
          {"repeats", r.repeats}, {"wall_seconds", jnum(r.wall_seconds)}, {"wall_min_seconds", jnum(r.wall_min_seconds)},
          {"events_per_second", jnum(r.events_per_second)}, {"ns_per_prediction", jnum(r.ns_per_prediction)},
-         {"cost_seconds", jnum(r.cost_seconds)}, {"cost_cpu_seconds", jnum(r.cost_cpu_seconds)}};
+         {"timed_in_judged_run", r.timed_in_judged_run}, {"cost_seconds", jnum(r.cost_seconds)}, {"cost_cpu_seconds", jnum(r.cost_cpu_seconds)}};
   // The histogram sparsely ([bucket, count] pairs) and the series as pairs.
   json hist = json::array();
   for (std::size_t b = 0; b < r.rel_hist.size(); ++b)
@@ -118,6 +118,7 @@ Row row_from(const json& j) {
   r.events_per_second = number(j, "events_per_second");
   r.ns_per_prediction = number(j, "ns_per_prediction");
   // Absent in reports made before they existed.
+  r.timed_in_judged_run = j.value("timed_in_judged_run", false);
   if (j.contains("cost_seconds")) r.cost_seconds = number(j, "cost_seconds");
   if (j.contains("cost_cpu_seconds")) r.cost_cpu_seconds = number(j, "cost_cpu_seconds");
   for (const json& pair : j.at("rel_hist")) {

@@ -8,7 +8,9 @@
 # - a worker killed mid-row (PGE_REPORT_TEST_CRASH: SIGABRT on the rows of one scene): exit 1,
 #   the results written with each of that scene's rows a failed run naming the signal, every other
 #   row as in the --jobs 1 run; the gate fails on them (exit 9, naming them);
-# - the gate measures with the baseline's jobs unless told (meta.jobs of its report).
+# - the gate measures with the baseline's jobs unless told (meta.jobs of its report);
+# - OUT/costs.json lists the rows' costs (those of 0.5 s or more), the next run into OUT reads it,
+#   one of another sweep is left aside with a note, and --costs naming no file is exit 10.
 # Usage: report_jobs.sh PGE FIXTURES_DIR
 set -u
 pge=$1; fixtures=$2
@@ -75,4 +77,25 @@ python3 -c 'import json,sys; j=json.load(open(sys.argv[1]))["meta"]["jobs"]; ass
   --out "$out/g1" > /dev/null 2>&1 || fail "the gate with --jobs 1 failed its own small sweep"
 python3 -c 'import json,sys; j=json.load(open(sys.argv[1]))["meta"]["jobs"]; assert j == 1, j' "$out/g1/report/results.json" ||
   fail "the gate's --jobs 1 was not followed"
-echo "ok: --jobs 2 gives the rows of --jobs 1; a killed worker costs its rows only (exit 1); the gate follows the baseline"
+# What each row cost (OUT/costs.json): written by every unsharded run, read by the next run into
+# the same directory (the order of work), refused by name when --costs names what is not one.
+python3 - "$out/j2/costs.json" "$out/j2/results.json" <<'PY' || fail "costs.json is not the rows' costs of the quick sweep"
+import json, sys
+c, r = (json.load(open(p)) for p in sys.argv[1:3])
+assert c["format"] == "pge-report-costs/1" and c["quick"] is True and c["max_events"] == 500, c
+cost = {"%s/%s/%s/%s/%s" % (x["kind"], x["family"], x["scene"], x["solver"], x["scalar"]): x["cost_cpu_seconds"] for x in r["rows"]}
+for key, seconds in c["rows"].items():
+    assert key in cost and seconds >= 0.5 and abs(seconds - cost[key]) <= 5e-4, (key, seconds, cost.get(key))
+assert all(key in c["rows"] for key, seconds in cost.items() if seconds >= 0.5005), "a costly row is not listed"
+PY
+"$pge" report --quick "${small[@]}" --jobs 2 --out "$out/b2" > "$out/again.txt" 2>&1 || fail "the second run into one directory"
+grep -q "the longest first by $out/b2/costs.json" "$out/again.txt" || { cat "$out/again.txt"; fail "the second run did not read its directory's costs"; }
+printf '{"format": "pge-report-costs/1", "quick": false, "max_events": 2000, "rows": {}}\n' > "$out/full-costs.json"
+"$pge" report --quick "${small[@]}" --jobs 1 --costs "$out/full-costs.json" --out "$out/c1" > "$out/other.txt" 2>&1 ||
+  fail "the costs of another sweep made the report fail"
+grep -q "holds the costs of another sweep" "$out/other.txt" || { cat "$out/other.txt"; fail "no note on the costs of another sweep"; }
+"$pge" report --quick "${small[@]}" --costs "$out/none.json" --out "$out/c2" > "$out/none.txt" 2>&1
+code=$?
+[[ $code -eq 10 ]] || { cat "$out/none.txt"; fail "--costs naming no file: exit $code, expected 10"; }
+grep -q "cannot read $out/none.json" "$out/none.txt" || { cat "$out/none.txt"; fail "--costs naming no file: no message naming it"; }
+echo "ok: --jobs 2 gives the rows of --jobs 1; a killed worker costs its rows only (exit 1); the gate follows the baseline; costs.json written, read back, refused by name"

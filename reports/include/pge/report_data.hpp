@@ -70,6 +70,9 @@ struct Row {
   double wall_min_seconds = 0;  // fastest repeat
   double events_per_second = 0;
   double ns_per_prediction = 0;
+  // The judged run's engine time stood for the timed runs: a run of a minute or more is measured
+  // once, inside its judged run (the oracle's own time taken out), not run again alone.
+  bool timed_in_judged_run = false;
 
   // What measuring the row cost in all (its judged run, a peer scene's reference, every timed
   // run): wall seconds and the CPU seconds of the thread that measured it. Not compared by the

@@ -1,0 +1,66 @@
+#include "pge/report_costs.hpp"
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace pge::report {
+
+using json = nlohmann::json;
+
+std::optional<RowCosts> read_costs(const std::string& path, bool quick, std::uint64_t max_events) {
+  std::ifstream in(path);
+  if (!in) throw ReportError(fmt::format("cannot read {}", path));
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    const json j = json::parse(text.str());
+    if (!j.is_object() || j.value("format", std::string()) != kCostsFormat)
+      throw ReportError(fmt::format("{}: not a costs file (format \"{}\" expected)", path, kCostsFormat));
+    if (j.at("quick").get<bool>() != quick || j.at("max_events").get<std::uint64_t>() != max_events) return std::nullopt;
+    RowCosts costs;
+    costs.origin = path;
+    for (const auto& [key, value] : j.at("rows").items()) {
+      const double seconds = value.get<double>();
+      if (!(seconds >= 0) || !std::isfinite(seconds))
+        throw ReportError(fmt::format("{}: row \"{}\": the cost must be a finite number of seconds, at least 0", path, key));
+      costs.cpu_seconds[key] = seconds;
+    }
+    return costs;
+  } catch (const json::exception& e) {
+    throw ReportError(fmt::format("{}: {}", path, e.what()));
+  }
+}
+
+void write_costs(const std::string& path, const Results& results, std::uint64_t max_events) {
+  json rows = json::object();
+  for (const Row& r : results.rows)
+    if (r.error.empty() && r.cost_cpu_seconds >= kCostsLeastSeconds)
+      rows[r.key()] = std::round(r.cost_cpu_seconds * 1000) / 1000;
+  const json j{{"format", kCostsFormat},
+               {"note", fmt::format("CPU seconds each row of this sweep cost to measure (rows of at least {} s): pge "
+                                    "report's order of work and estimate of the time left, nothing else",
+                                    kCostsLeastSeconds)},
+               {"quick", results.meta.quick},
+               {"max_events", max_events},
+               {"commit", results.meta.commit},
+               {"created", results.meta.created},
+               {"cpu", results.meta.cpu},
+               {"build_type", results.meta.build_type},
+               {"jobs", results.meta.jobs},
+               {"rows", rows}};
+  std::ofstream out(path);
+  out << j.dump(1) << '\n';
+  if (!out.flush()) throw ReportError(fmt::format("cannot write {}", path));
+}
+
+std::vector<std::size_t> longest_first(const std::vector<double>& expected, std::vector<std::size_t> order) {
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return expected[a] > expected[b]; });
+  return order;
+}
+
+}  // namespace pge::report
