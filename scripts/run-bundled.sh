@@ -2,7 +2,8 @@
 # scripts/run-bundled.sh [--full] [--out DIR] [--no-deps] [--no-screenshot] [--] [pge report options...]
 #
 # The main job on the bundled scenes: installs what is missing (scripts/install-deps.sh), builds
-# `pge` (RelWithDebInfo, in $PGE_BUILD_DIR, default build/), and writes the accuracy report, speed
+# `pge` (in $PGE_BUILD_DIR, default build/: RelWithDebInfo, or the type the build directory was
+# configured with), and writes the accuracy report, speed
 # against error for every solver x scalar over the bundled fixture families (fixtures/scenes/*
 # but long and peers) and random scenes, to out/report/: index.html (open it in a browser),
 # report.md, results.json, results.csv and plots/.
@@ -83,7 +84,10 @@ elif [[ $given == *" --peer-scenes"* && ${#sweep[@]} -gt 0 ]]; then
 fi
 build=${PGE_BUILD_DIR:-build}
 if [[ $deps -eq 1 ]]; then scripts/install-deps.sh; fi
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+# A build directory already configured keeps its type (a Release build measured by measure.sh
+# --no-build stays one); a new one, or one configured without a type, is RelWithDebInfo.
+type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null || true)
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE="${type:-RelWithDebInfo}" >/dev/null
 cmake --build "$build" -j "$(nproc)" --target pge
 
 # Progress: redrawn in place on a terminal, a line now and then in a log.
