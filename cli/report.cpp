@@ -582,9 +582,10 @@ int write_outputs(const ReportOptions& o, const Results& r, const std::vector<Sc
 
 std::size_t bodies_of(const Item& it) { return it.scene ? it.scene->loaded.scene.bodies.size() : it.bodies; }
 
-// What every item is expected to cost (seconds): from `costs` where it lists the row; else its
-// row_weight at its part's prior pace, but no more than the least cost `costs` lists (it lists
-// every row of its sweep that cost more: the model overrates many a quad row of a large scene).
+// What every item is expected to cost (seconds): from `costs` where it lists the row, else the
+// mean of the rows of its kind it does not list (all cheaper than kCostsLeastSeconds: the model
+// overrates many a quad row of a large scene); without costs, its row_weight at its part's prior
+// pace.
 std::vector<double> expected_costs(const std::vector<Item>& items, const std::optional<report::RowCosts>& costs, bool quick) {
   std::vector<double> out;
   out.reserve(items.size());
@@ -592,7 +593,10 @@ std::vector<double> expected_costs(const std::vector<Item>& items, const std::op
     double seconds = expected_row_seconds(it.kind, it.config.scalar, bodies_of(it), quick);
     if (costs) {
       const auto known = costs->cpu_seconds.find(row_of(it).key());
-      seconds = known != costs->cpu_seconds.end() ? known->second : std::min(seconds, report::kCostsLeastSeconds);
+      const auto rest = costs->rest_mean.find(report::row_kind_name(it.kind));
+      seconds = known != costs->cpu_seconds.end() ? known->second
+                : rest != costs->rest_mean.end()  ? rest->second
+                                                  : std::min(seconds, report::kCostsLeastSeconds);
     }
     out.push_back(seconds);
   }

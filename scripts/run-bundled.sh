@@ -19,8 +19,8 @@
 # core at once (pge report --jobs, default one per core; pass --jobs 1 for one at a time), the
 # longest first (reports/costs-full.json, then each run's own costs.json), so the wall time is about
 # the CPU time over the cores, but never less than the longest single row (fast in quad on the
-# 1000-turn near miss, about 7.5 minutes): 13 minutes on 2 cores; the line at the end says how long
-# it took.
+# 1000-turn near miss, about 7.5 minutes): 11 to 13 minutes on 2 cores; the line at the end says
+# how long it took.
 #
 # While it measures: on a terminal, one line redrawn in place (rows done, the part, time elapsed
 # and left); otherwise (a log, CI) a line per part every 30 s and when the part ends, e.g.

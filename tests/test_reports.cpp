@@ -179,11 +179,15 @@ TEST(ReportData, TimedInJudgedRunDefaultsToFalse) {
 }
 
 // costs.json (report_costs.hpp): the rows of at least kCostsLeastSeconds that ran, back as written
-// (to the millisecond), and only for the sweep they were measured in.
+// (to the millisecond), the cheaper ones as their kind's mean, and only for the sweep they were
+// measured in.
 TEST(ReportCosts, RoundTripKeepsTheCostlyRowsOfOneSweep) {
-  Results r = sample();  // quick
+  Results r = sample();  // quick: accuracy, accuracy, drift
   r.rows[0].cost_cpu_seconds = 12.5;
   r.rows[1].cost_cpu_seconds = kCostsLeastSeconds / 2;  // too cheap to list
+  r.rows.push_back(r.rows[1]);
+  r.rows.back().solver = "certified";
+  r.rows.back().cost_cpu_seconds = kCostsLeastSeconds / 4;
   r.rows[2].cost_cpu_seconds = 3.0;
   r.rows[2].error = "failed";  // a failed row's cost says nothing of the next run
   const std::string path = ::testing::TempDir() + "pge-costs-test.json";
@@ -193,6 +197,8 @@ TEST(ReportCosts, RoundTripKeepsTheCostlyRowsOfOneSweep) {
   EXPECT_EQ(c->origin, path);
   ASSERT_EQ(c->cpu_seconds.size(), 1u);
   EXPECT_EQ(c->cpu_seconds.at(r.rows[0].key()), 12.5);
+  ASSERT_EQ(c->rest_mean.size(), 1u);  // no drift row: the one there failed
+  EXPECT_EQ(c->rest_mean.at("accuracy"), (kCostsLeastSeconds / 2 + kCostsLeastSeconds / 4) / 2);
   EXPECT_FALSE(read_costs(path, false, 500).has_value());  // of the quick sweep, not the full one
   EXPECT_FALSE(read_costs(path, true, 2000).has_value());  // other events per scene
   std::remove(path.c_str());

@@ -30,6 +30,14 @@ std::optional<RowCosts> read_costs(const std::string& path, bool quick, std::uin
         throw ReportError(fmt::format("{}: row \"{}\": the cost must be a finite number of seconds, at least 0", path, key));
       costs.cpu_seconds[key] = seconds;
     }
+    if (j.contains("rest"))
+      for (const auto& [kind, rest] : j.at("rest").items()) {
+        const auto rows = rest.at("rows").get<std::uint64_t>();
+        const double seconds = rest.at("cpu_seconds").get<double>();
+        if (!(seconds >= 0) || !std::isfinite(seconds))
+          throw ReportError(fmt::format("{}: rest \"{}\": the cost must be a finite number of seconds, at least 0", path, kind));
+        if (rows > 0) costs.rest_mean[kind] = seconds / static_cast<double>(rows);
+      }
     return costs;
   } catch (const json::exception& e) {
     throw ReportError(fmt::format("{}: {}", path, e.what()));
@@ -38,12 +46,24 @@ std::optional<RowCosts> read_costs(const std::string& path, bool quick, std::uin
 
 void write_costs(const std::string& path, const Results& results, std::uint64_t max_events) {
   json rows = json::object();
-  for (const Row& r : results.rows)
-    if (r.error.empty() && r.cost_cpu_seconds >= kCostsLeastSeconds)
+  std::map<std::string, std::pair<std::uint64_t, double>> rest;  // by kind: rows, seconds
+  for (const Row& r : results.rows) {
+    if (!r.error.empty()) continue;
+    if (r.cost_cpu_seconds >= kCostsLeastSeconds) {
       rows[r.key()] = std::round(r.cost_cpu_seconds * 1000) / 1000;
+    } else {
+      auto& [count, seconds] = rest[row_kind_name(r.kind)];
+      ++count;
+      seconds += r.cost_cpu_seconds;
+    }
+  }
+  json rest_json = json::object();
+  for (const auto& [kind, totals] : rest)
+    rest_json[kind] = {{"rows", totals.first}, {"cpu_seconds", std::round(totals.second * 1000) / 1000}};
   const json j{{"format", kCostsFormat},
-               {"note", fmt::format("CPU seconds each row of this sweep cost to measure (rows of at least {} s): pge "
-                                    "report's order of work and estimate of the time left, nothing else",
+               {"note", fmt::format("CPU seconds each row of this sweep cost to measure (rows of at least {} s; the "
+                                    "others' count and sum by kind under rest): pge report's order of work and "
+                                    "estimate of the time left, nothing else",
                                     kCostsLeastSeconds)},
                {"quick", results.meta.quick},
                {"max_events", max_events},
@@ -52,7 +72,8 @@ void write_costs(const std::string& path, const Results& results, std::uint64_t 
                {"cpu", results.meta.cpu},
                {"build_type", results.meta.build_type},
                {"jobs", results.meta.jobs},
-               {"rows", rows}};
+               {"rows", rows},
+               {"rest", rest_json}};
   std::ofstream out(path);
   out << j.dump(1) << '\n';
   if (!out.flush()) throw ReportError(fmt::format("cannot write {}", path));
