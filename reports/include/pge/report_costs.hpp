@@ -1,7 +1,7 @@
 // What each row of a sweep cost to measure, kept from an earlier run of the same sweep: the
 // order in which `pge report` hands rows to its workers (the longest first) and its estimate of
-// the time left. Only a hint: a row it does not list is weighed by row_weight, and no figure of
-// the report depends on it.
+// the time left. Only a hint: a row it does not list counts at its kind's mean (or, without one,
+// by row_weight), and no figure of the report depends on it.
 #pragma once
 
 #include "pge/report_data.hpp"
@@ -27,7 +27,7 @@ struct RowCosts {
 };
 
 // Reads a costs file. Throws ReportError naming the file when it cannot be read or is not
-// one; nothing when it is of another sweep (quick against full, other events per scene).
+// one; nullopt when it is of another sweep (quick against full, other events per scene).
 std::optional<RowCosts> read_costs(const std::string& path, bool quick, std::uint64_t max_events);
 
 // Writes the rows' CPU costs (those of at least kCostsLeastSeconds one by one, the others as each
