@@ -743,8 +743,7 @@ int make_report(const ReportOptions& o, Results& results) {
     std::fflush(stdout);  // before the progress on stderr, in a log too; and before workers fork
   }
   std::vector<ReportProgress::Planned> parts;
-  for (std::size_t k : mine)
-    parts.push_back({items[k].kind, items[k].config.scalar, bodies_of(items[k]), expected[k]});
+  for (std::size_t k : mine) parts.push_back({items[k].kind, expected[k]});
   ReportProgress progress(o.quiet ? ProgressStyle::None
                           : o.progress_lines ? ProgressStyle::Lines
                           : o.progress       ? ProgressStyle::Terminal

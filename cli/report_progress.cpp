@@ -69,9 +69,7 @@ ReportProgress::ReportProgress(ProgressStyle style, const std::vector<Planned>& 
     : style_(style), quick_(quick), workers_(std::max(1u, workers)), start_(Clock::now()), last_line_(start_) {
   for (const Planned& item : plan) {
     if (parts_.empty() || parts_.back().kind != item.kind) parts_.push_back({item.kind});
-    // A cost measured before weighs the row as that many seconds at the part's prior pace.
-    const double w = item.expected_seconds >= 0 ? item.expected_seconds / prior_seconds(item.kind, quick)
-                                                : row_weight(item.kind, item.scalar, item.bodies);
+    const double w = item.expected_seconds / prior_seconds(item.kind, quick);
     ++parts_.back().rows;
     parts_.back().weight += w;
     part_of_.push_back(parts_.size() - 1);

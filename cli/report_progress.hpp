@@ -38,13 +38,12 @@ std::string short_duration(double seconds);
 
 class ReportProgress {
  public:
-  // What is to be measured, in order (the items of a part together): each item's part, its scalar
-  // (peer rows: the setting) and its scene's bodies, which weigh it (row_weight).
+  // What is to be measured, in order (the items of a part together): each item's part and what
+  // it is expected to cost (an earlier run's, pge/report_costs.hpp, or expected_row_seconds),
+  // which weighs it as that many seconds at its part's prior pace.
   struct Planned {
     report::RowKind kind;
-    std::string scalar;
-    std::size_t bodies = 0;
-    double expected_seconds = -1;  // what it is expected to cost (pge/report_costs.hpp); < 0: row_weight's
+    double expected_seconds = 0;
   };
   // quick: the sweep (it sets the prior cost of a row in a part not yet started); workers: how
   // many items are measured at once (pge report --jobs), which divides the time left.
@@ -70,7 +69,7 @@ class ReportProgress {
   struct Part {
     report::RowKind kind;
     std::size_t rows = 0, done = 0;
-    double weight = 0, done_weight = 0;  // of its rows, of its done rows (row_weight)
+    double weight = 0, done_weight = 0;  // of its rows, of its done rows (Planned's weights)
     double seconds = 0;                  // spent on its done rows
   };
   double elapsed() const;

@@ -5,37 +5,32 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace pge::report {
 
 using json = nlohmann::json;
 
 std::optional<RowCosts> read_costs(const std::string& path, bool quick, std::uint64_t max_events) {
-  std::ifstream in(path);
-  if (!in) throw ReportError(fmt::format("cannot read {}", path));
-  std::stringstream text;
-  text << in.rdbuf();
+  const std::string text = read_text_file(path);
+  // A cost: a finite number of seconds, at least 0.
+  const auto seconds_of = [&path](const json& value, const std::string& what) {
+    const double seconds = value.get<double>();
+    if (!(seconds >= 0) || !std::isfinite(seconds))
+      throw ReportError(fmt::format("{}: {}: the cost must be a finite number of seconds, at least 0", path, what));
+    return seconds;
+  };
   try {
-    const json j = json::parse(text.str());
+    const json j = json::parse(text);
     if (!j.is_object() || j.value("format", std::string()) != kCostsFormat)
       throw ReportError(fmt::format("{}: not a costs file (format \"{}\" expected)", path, kCostsFormat));
     if (j.at("quick").get<bool>() != quick || j.at("max_events").get<std::uint64_t>() != max_events) return std::nullopt;
     RowCosts costs;
     costs.origin = path;
-    for (const auto& [key, value] : j.at("rows").items()) {
-      const double seconds = value.get<double>();
-      if (!(seconds >= 0) || !std::isfinite(seconds))
-        throw ReportError(fmt::format("{}: row \"{}\": the cost must be a finite number of seconds, at least 0", path, key));
-      costs.cpu_seconds[key] = seconds;
-    }
+    for (const auto& [key, value] : j.at("rows").items()) costs.cpu_seconds[key] = seconds_of(value, "row \"" + key + "\"");
     if (j.contains("rest"))
       for (const auto& [kind, rest] : j.at("rest").items()) {
         const auto rows = rest.at("rows").get<std::uint64_t>();
-        const double seconds = rest.at("cpu_seconds").get<double>();
-        if (!(seconds >= 0) || !std::isfinite(seconds))
-          throw ReportError(fmt::format("{}: rest \"{}\": the cost must be a finite number of seconds, at least 0", path, kind));
+        const double seconds = seconds_of(rest.at("cpu_seconds"), "rest \"" + kind + "\"");
         if (rows > 0) costs.rest_mean[kind] = seconds / static_cast<double>(rows);
       }
     return costs;
@@ -74,9 +69,7 @@ void write_costs(const std::string& path, const Results& results, std::uint64_t 
                {"jobs", results.meta.jobs},
                {"rows", rows},
                {"rest", rest_json}};
-  std::ofstream out(path);
-  out << j.dump(1) << '\n';
-  if (!out.flush()) throw ReportError(fmt::format("cannot write {}", path));
+  write_text_file_atomically(path, j.dump(1) + "\n");
 }
 
 std::vector<std::size_t> longest_first(const std::vector<double>& expected, std::vector<std::size_t> order) {

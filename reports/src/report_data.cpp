@@ -217,12 +217,21 @@ Results read_results(const std::string& path) {
   return from_json_text(text.str(), path);
 }
 
-void write_results(const std::string& path, const Results& r) {
-  // Written beside and renamed, so that a crash never leaves half a results file.
+void write_results(const std::string& path, const Results& r) { write_text_file_atomically(path, to_json_text(r)); }
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ReportError("cannot read " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_text_file_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary);
-    out << to_json_text(r);
+    out << text;
     out.close();
     if (!out) throw ReportError("cannot write " + tmp);
   }

@@ -29,14 +29,6 @@ void write_file(const fs::path& path, const std::string& text) {
   if (!out) throw ReportError("cannot write " + path.string());
 }
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ReportError("cannot read " + path.string());
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string base64(const std::string& data) {
   static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
@@ -402,7 +394,7 @@ void run_gnuplot(const fs::path& dir, const Plots& plots, const std::string& gnu
       fmt::format("cd '{}' && '{}' plots.gp > gnuplot.log 2>&1", dir.string(), gnuplot);
   const int status = std::system(command.c_str());
   if (status != 0) {
-    const std::string said = fs::exists(log) ? read_file(log) : std::string();
+    const std::string said = fs::exists(log) ? read_text_file(log) : std::string();
     throw ReportError(fmt::format("gnuplot failed (exit status {}); is it installed (Debian: gnuplot-nox)? {}{}", status,
                                   log, said.empty() ? "" : ":\n" + said.substr(0, 2000)));
   }
@@ -614,7 +606,7 @@ void write_page(const Results& r, const std::string& dir_name, const PageInputs&
       html += "<p>Not measured in this report.</p>\n";
     } else {
       html += fmt::format("<img alt=\"{}\" src=\"data:image/svg+xml;base64,{}\">\n", html_escaped(sec.title),
-                          base64(read_file(plots_dir / sec.plot)));
+                          base64(read_text_file((plots_dir / sec.plot).string())));
     }
   }
   if (!in.pictures.empty()) {

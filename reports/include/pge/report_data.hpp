@@ -123,6 +123,11 @@ std::string to_json_text(const Results& r);
 Results from_json_text(const std::string& text, const std::string& origin);
 Results read_results(const std::string& path);
 void write_results(const std::string& path, const Results& r);  // throws ReportError
+// A whole file as text; throws ReportError ("cannot read PATH").
+std::string read_text_file(const std::string& path);
+// Writes text beside `path` and renames it there, so that a crash never leaves half a file;
+// throws ReportError.
+void write_text_file_atomically(const std::string& path, const std::string& text);
 // One row as one line of JSON (no newline) and back, exactly (pge report --jobs: a worker process
 // hands its rows to the parent this way); row_from_json_line throws ReportError.
 std::string row_to_json_line(const Row& row);
