@@ -12,6 +12,7 @@
 #include <boost/math/constants/constants.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
+#include <cfenv>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -86,6 +87,79 @@ TEST(RotationTrig, LongDoubleStepsAreLibmsNextafter) {
                      std::numeric_limits<LD>::denorm_min(), std::numeric_limits<LD>::min()})
     check(x);
   EXPECT_GT(checked, 200000);
+}
+
+// x y rounded by the FPU in `mode` (fesetround sets SSE's and the x87's rounding alike): the
+// independent reference for the emulated directed rounding below. The volatile operands keep
+// the product between the mode changes.
+template <class B> B directed_product(const B x, const B y, const int mode) {
+  const int old = std::fegetround();
+  std::fesetround(mode);
+  volatile B a = x, b = y;
+  volatile B r = a * b;
+  std::fesetround(old);
+  return r;
+}
+
+// Interval products round each bound outward in round-to-nearest arithmetic (interval.hpp's
+// Rounding: the product's error sign from a fused multiply-add in double, from the significands'
+// integer product for two normal x87 long doubles, from Dekker's splitting otherwise). Where the
+// product is an ordinary number they must be exactly the FPU's directed roundings; near
+// underflow and overflow, where they widen by a value instead, at most one value further out.
+// Factors: random significands over many binades with both signs, small integers (exact
+// products), products next to powers of two, subnormal and huge factors.
+template <class B> void check_products_round_as_the_fpu_does(std::uint64_t seed) {
+  using R = pge::detail::Rounding<B>;
+  std::mt19937_64 rng(seed);
+  const int max_exp = std::numeric_limits<B>::max_exponent;
+  const auto random_value = [&](int lo_exp, int hi_exp) {
+    B m = B(1) + B(rng() >> 11) * B(0x1p-53) + (std::numeric_limits<B>::digits > 53 ? B(rng() >> 11) * B(0x1p-106) : B(0));
+    if (rng() % 4 == 0) m = B(1) + B(rng() % 1024) / B(1024);  // short significands: exact products
+    const int e = lo_exp + static_cast<int>(rng() % static_cast<std::uint64_t>(hi_exp - lo_exp + 1));
+    const B v = std::ldexp(m, e);
+    return rng() % 2 ? v : B(-v);
+  };
+  long ordinary = 0, exact = 0, edge = 0;
+  const auto check = [&](const B x, const B y) {
+    const B down = R::mul_down(x, y), up = R::mul_up(x, y);
+    const B fpu_down = directed_product(x, y, FE_DOWNWARD), fpu_up = directed_product(x, y, FE_UPWARD);
+    if (R::ordinary(x * y)) {
+      ++ordinary;
+      exact += fpu_down == fpu_up;
+      ASSERT_EQ(down, fpu_down) << static_cast<double>(x) << " * " << static_cast<double>(y);
+      ASSERT_EQ(up, fpu_up) << static_cast<double>(x) << " * " << static_cast<double>(y);
+    } else {
+      ++edge;
+      ASSERT_LE(down, fpu_down) << static_cast<double>(x) << " * " << static_cast<double>(y);
+      ASSERT_GE(down, pge::detail::interval_next_down(fpu_down));
+      ASSERT_GE(up, fpu_up) << static_cast<double>(x) << " * " << static_cast<double>(y);
+      ASSERT_LE(up, pge::detail::interval_next_up(fpu_up));
+    }
+  };
+  for (int i = 0; i < 200000; ++i) check(random_value(-60, 60), random_value(-60, 60));
+  for (int i = 0; i < 50000; ++i) check(random_value(-max_exp + 8, max_exp - 8), random_value(-max_exp / 2, max_exp / 2));
+  for (int i = 0; i < 20000; ++i) {  // one huge factor (Dekker could not split it) times a small one
+    const B huge = random_value(max_exp - 60, max_exp - 2), small = random_value(-max_exp + 60, -200);
+    check(huge, small);
+  }
+  for (int i = 0; i < 20000; ++i) {  // subnormal and smallest normal factors, products near underflow
+    const B tiny = std::ldexp(random_value(0, 0), std::numeric_limits<B>::min_exponent - 1 - static_cast<int>(rng() % 40));
+    check(tiny, random_value(0, 120));
+  }
+  for (int k = 1; k < 2000; ++k) {  // next to powers of two: (1 + k eps)(1 - k eps) and the like
+    const B eps = std::numeric_limits<B>::epsilon();
+    check(B(1) + B(k) * eps, B(1) - B(k) * eps / B(2));
+    check(std::nextafter(B(2), B(0)), B(1) + B(k) * eps);
+  }
+  for (const B z : {B(0), B(-0.0)}) check(z, random_value(-10, 10));
+  EXPECT_GT(ordinary, 250000);
+  EXPECT_GT(exact, 10000);
+  EXPECT_GT(edge, 1000);
+}
+
+TEST(RotationTrig, ProductsRoundOutwardAsTheFpuDoes) {
+  check_products_round_as_the_fpu_does<double>(5);
+  check_products_round_as_the_fpu_does<long double>(6);
 }
 
 TEST(RotationTrig, PointEnclosuresHoldTheTrueValueAndAreTight) {

@@ -117,6 +117,52 @@ template <class B> struct Rounding {
       return exact_product_minus_sign(x, y, r);
     }
   }
+  // The same for an ordinary r (x and y finite and non-zero) where it comes cheaply, true then:
+  // double's fused multiply-add needs no splitting whatever the factors' sizes, and two normal
+  // x87 long doubles are compared in integers (their 64-bit significands' 128-bit product
+  // against the result's significand, shifted by the exponents). False where the general path
+  // must decide (other types; long double factors that are not normal numbers).
+  static bool quick_product_error_sign(const B& x, const B& y, const B& r, int& sign) {
+    if constexpr (std::is_same_v<B, double>) {
+      sign = product_error_sign(x, y, r);
+      return true;
+    } else if constexpr (x87_long_double) {
+      struct Parts {
+        std::uint64_t significand;
+        std::uint16_t sign_exponent;
+      };
+      Parts px{}, py{}, pr{};
+      std::memcpy(&px, &x, sizeof px);
+      std::memcpy(&py, &y, sizeof py);
+      std::memcpy(&pr, &r, sizeof pr);
+      constexpr std::uint64_t integer_bit = std::uint64_t{1} << 63;
+      const int ex = px.sign_exponent & 0x7fff, ey = py.sign_exponent & 0x7fff, er = pr.sign_exponent & 0x7fff;
+      if ((px.significand & py.significand & integer_bit) == 0 || ex == 0 || ey == 0 || ex == 0x7fff || ey == 0x7fff)
+        return false;
+      // |x| = mx 2^(ex - 16446) for a normal x (bias 16383, 63 fraction bits), so |x y| - |r|
+      // has the sign of mx my - mr 2^(er + 16446 - ex - ey); the product of the significands
+      // lies in [2^126, 2^128), so the shift is 63 or 64, or 65 where r rounded up to 2^128
+      // units of it (then |r| is the larger).
+      const int shift = er + 16446 - ex - ey;
+      int magnitude = -1;
+      if (shift == 63 || shift == 64) {
+        __extension__ using U128 = unsigned __int128;
+        const U128 p = static_cast<U128>(px.significand) * py.significand;
+        const U128 q = static_cast<U128>(pr.significand) << shift;
+        magnitude = (p > q) - (p < q);
+      } else if (shift != 65) {
+        return false;
+      }
+      sign = (x < B(0)) != (y < B(0)) ? -magnitude : magnitude;
+      return true;
+    } else {
+      static_assert(!quick_products);
+      return false;
+    }
+  }
+  static constexpr bool x87_long_double =
+      std::is_same_v<B, long double> && std::numeric_limits<long double>::digits == 64;
+  static constexpr bool quick_products = std::is_same_v<B, double> || x87_long_double;
   // Whether Dekker's splitting of x and y cannot overflow.
   static bool splittable(const B& x, const B& y) {
     const B limit = std::numeric_limits<B>::max() * std::numeric_limits<B>::epsilon() / B(8);
@@ -137,12 +183,26 @@ template <class B> struct Rounding {
   }
   static B add_down(const B& a, const B& b) { const B r = a + b; return down(r, sum_error_sign(a, b, r)); }
   static B add_up(const B& a, const B& b) { const B r = a + b; return up(r, sum_error_sign(a, b, r)); }
+  // An ordinary product (the common case) is stepped outward by its error's sign alone where
+  // that comes cheaply (quick_product_error_sign); zeros, underflow, overflow and the rest take
+  // the general path. The same bounds as the general path's wherever that one can split the
+  // factors; past that (double factors beyond about 2^970) exact where it widened by an ulp.
   static B mul_down(const B& x, const B& y) {
+    if constexpr (quick_products) {
+      const B r = x * y;
+      int e = 0;
+      if (ordinary(r) && quick_product_error_sign(x, y, r, e)) return e < 0 ? interval_next_down(r) : r;
+    }
     if (x == B(0) || y == B(0)) return B(0);
     const B r = x * y;
     return down(r, ordinary(r) && splittable(x, y) ? product_error_sign(x, y, r) : -1);
   }
   static B mul_up(const B& x, const B& y) {
+    if constexpr (quick_products) {
+      const B r = x * y;
+      int e = 0;
+      if (ordinary(r) && quick_product_error_sign(x, y, r, e)) return e > 0 ? interval_next_up(r) : r;
+    }
     if (x == B(0) || y == B(0)) return B(0);
     const B r = x * y;
     return up(r, ordinary(r) && splittable(x, y) ? product_error_sign(x, y, r) : 1);
