@@ -99,6 +99,7 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
   j["stale"] = n.stale;
   j["predictions"] = n.predictions;
   j["undecided_roundings"] = n.undecided_roundings;
+  j["impulse_lifts"] = n.impulse_lifts;
   j["broad_phase"] = broad_phase_name(world.broad_phase());
   j["cell_crossings"] = n.crossings;
   j["global_bodies"] = n.global_bodies;
@@ -164,6 +165,9 @@ SceneResult simulate(const LoadedScene& loaded, const RunOptions& opt, TraceWrit
     if (n.undecided_roundings > 0)
       fmt::print("  undecided roundings: {} rotating contact times kept robust's placement (certified could not "
                  "decide their rounding)\n", n.undecided_roundings);
+    if (n.impulse_lifts > 0)
+      fmt::print("  impulse lifts: {} turning impulses grown by a few ulps (the struck point still approached by "
+                 "the exact paths)\n", n.impulse_lifts);
     if (world.broad_phase() == BroadPhase::Grid)
       fmt::print("  broad phase: grid, {} cell crossings, {} bodies outside the grid\n", n.crossings, n.global_bodies);
   }

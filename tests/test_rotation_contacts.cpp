@@ -436,6 +436,72 @@ TEST(RotationContacts, FunctionEnclosuresHoldTheDirectGeometry) {
   EXPECT_LE(worst_width, 256);
 }
 
+// The rate at which a contact's gap closes (detail::gap_rate_sign: what an impulse must leave
+// not approaching, E7 in docs/rotation.md), decided from the exact paths where double cannot.
+// Expected: the derivative of cross(p - q, e) - rho |e| in 50 digits by the product rule, from
+// the material points' velocities (the centre's plus omega perp(R r)) and the edge's turn
+// (e' = omega_Q perp(e), so |e| is constant): independent of the code's wave sums. Each case's
+// velocity is first set so that the rate vanishes up to the rounding of the stored velocity,
+// where double's enclosure cannot tell the sign and the wider types must.
+TEST(RotationContacts, TheGapsRateIsDecidedFromTheExactPathsWhereDoubleCannotTellIt) {
+  using namespace pge::detail;
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto perp_h = [](const VH& v) { return VH{-v.y, v.x}; };
+  int decided = 0, past_double = 0, zero = 0;
+  for (int i = 0; i < 3000; ++i) {
+    Path P = random_path(rng, i % 4);
+    const Path Q = random_path(rng, (i / 4) % 4);
+    const double t = P.t0 + 2 * std::abs(u(rng));
+    const bool circle = i % 5 == 0;
+    const V r = circle ? V{0, 0} : V{2 * u(rng), 2 * u(rng)};
+    const double rho = circle ? 0.1 + std::abs(u(rng)) : 0.0;
+    const V q{2 * u(rng), 2 * u(rng)}, q_end{3 * u(rng), 3 * u(rng)};
+    const auto rate = [&](const Path& p_path) {
+      const HighPath hp{p_path}, hq{Q};
+      const High T(t);
+      const High sp = T - High(p_path.t0), sq = T - High(Q.t0);
+      const VH vp = high(p_path.v0) + high(p_path.a) * sp, vq = high(Q.v0) + high(Q.a) * sq;
+      const VH arm_p = hp.turn(r, T), arm_q = hq.turn(q, T), e = hq.turn(q_end, T) - arm_q;
+      const VH up = vp + perp_h(arm_p) * High(p_path.omega), uq = vq + perp_h(arm_q) * High(Q.omega);
+      const VH d = hp.point(r, T) - hq.point(q, T);
+      return std::pair{cross(up - uq, e) + cross(d, perp_h(e) * High(Q.omega)), e};
+    };
+    // The velocity that makes the rate vanish, rounded to doubles.
+    const auto [g0, e] = rate(P);
+    const VH fix = VH{e.y, -e.x} * (-g0 / dot(e, e));
+    P.v0 = V{static_cast<double>(High(P.v0.x) + fix.x), static_cast<double>(High(P.v0.y) + fix.y)};
+    const High g = rate(P).first;
+    pge::detail::RotatingShape<double> sp, sq;
+    sp.path = P;
+    sq.path = Q;
+    sp.radius = rho;
+    const std::vector<V> p_vertices{r}, q_vertices{q, q_end};
+    if (!circle) sp.vertices = p_vertices;
+    sq.vertices = q_vertices;
+    pge::detail::RotatingContact<double> c;
+    c.feature = circle ? RotatingFeature::CircleEdge : RotatingFeature::VertexEdge;
+    c.point_on_a = true;
+    c.point = 0;
+    c.edge = 0;
+    const int want = g > 0 ? 1 : (g < 0 ? -1 : 0);
+    const int got = gap_rate_sign(sp, sq, c, t);
+    // A sign is never wrong; one that quad cannot tell is 0 (the rate is then within quad's
+    // rounding of zero: exactly zero, in these cases).
+    if (got != 0) {
+      ASSERT_EQ(got, want) << i;
+      ++decided;
+    } else {
+      ASSERT_EQ(want, 0) << i << " " << static_cast<double>(g);
+      ++zero;
+    }
+    past_double += gap_rate_sign_in<double>(sp, sq, c, t) == 0 && got != 0;
+  }
+  std::printf("rates decided %d (%d past double), exactly zero %d\n", decided, past_double, zero);
+  EXPECT_GT(decided, 2500);
+  EXPECT_GT(past_double, 2000);  // most need the wider types: the test reaches them
+}
+
 double ulps_off(double t, const High& exact) {
   const double ulp = std::nextafter(t, INFINITY) - t;
   return static_cast<double>(abs(High(t) - exact) / High(ulp));

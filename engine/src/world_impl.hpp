@@ -234,6 +234,7 @@ template <class T> struct World<T>::Impl {
   detail::RotatingGeometry<T> rotating_geometry(const Scheduled<T>& s, const T& t) const;
   // Whether the contact points approach at s.time (the impulse test).
   bool rotating_approaching(const Scheduled<T>& s) const;
+  bool approaches_after(const Scheduled<T>& s) const;
   // The impulse test of a predictor's contact record of the pair (lo, hi), at its time, with the
   // corner rule's verdict (detail::ContactTest).
   detail::ContactTest rotating_contact_test(BodyIndex lo, BodyIndex hi, const detail::RotatingContact<T>& c) const;

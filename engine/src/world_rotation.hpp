@@ -225,6 +225,15 @@ inline auto World<T>::Impl::rotating_geometry(const Scheduled<T>& s, const T& t)
                                            solver != SolverKind::Fast);
 }
 
+// Whether the contact's point certainly approaches its edge (or a circle the edge) at `now` by
+// the exact stored paths (detail::gap_rate_sign); false for a circle against a vertex.
+template <class T> inline auto World<T>::Impl::approaches_after(const Scheduled<T>& s) const -> bool {
+  const detail::RotatingContact<T> c = rotating_record(s, now);
+  if (c.feature == detail::RotatingFeature::CircleVertex) return false;
+  const detail::RotatingShape<T> sa = rotating_shape(bodies[s.lo]), sb = rotating_shape(bodies[s.hi]);
+  return detail::gap_rate_sign(c.point_on_a ? sa : sb, c.point_on_a ? sb : sa, c, now) < 0;
+}
+
 template <class T> inline auto World<T>::Impl::rotating_approaching(const Scheduled<T>& s) const -> bool {
   return rotating_contact_test(s.lo, s.hi, rotating_record(s, s.time)) == detail::ContactTest::Collides;
 }
@@ -272,18 +281,39 @@ template <class T> inline auto World<T>::Impl::collide_rotating(const Scheduled<
   detail::RigidState<T> rb{kb.v, spin(b), b.inv_mass, inv_inertia(b)};
   const T e = std::min(a.restitution, b.restitution);
   // A corner whose relative motion does not enter the overlap cone passes or leaves: no impulse.
+  const detail::RigidState<T> ra_before = ra, rb_before = rb;
   detail::Impulse<T> j;
   if (g.enters) j = detail::apply_rigid_impulse_with_arms(ra, g.arm_a, rb, g.arm_b, n, e);
   info.normal = n_len > T(0) ? n * (T(1) / n_len) : n;
   info.approach_speed = n_len > T(0) ? -j.v_n / n_len : T(0);
   if (j.applied) {
-    if (!a.fixed) {
-      a.v0 = ra.v;
-      if (a.rotates) spin_of(a).omega = ra.w;
-    }
-    if (!b.fixed) {
-      b.v0 = rb.v;
-      if (b.rotates) spin_of(b).omega = rb.w;
+    const auto store = [&] {
+      if (!a.fixed) {
+        a.v0 = ra.v;
+        if (a.rotates) spin_of(a).omega = ra.w;
+      }
+      if (!b.fixed) {
+        b.v0 = rb.v;
+        if (b.rotates) spin_of(b).omega = rb.w;
+      }
+    };
+    store();
+    // The stored velocities are the impulse's roundings: where the struck point's exact normal
+    // velocity after them still approaches (restitution 0 leaves it zero up to rounding; E7 in
+    // docs/rotation.md), the pair touches and approaches at this instant, a contact the exact
+    // paths have and the search from here would pass (its start test is in rounding). The
+    // impulse grows by an ulp, then 4, 16, ... until the exact paths certainly do not approach
+    // there, or within rounding of zero (a face held flat: no change).
+    if (solver != SolverKind::Fast && !g.corner && !g.face_on_face) {
+      T bump = j.j * std::numeric_limits<T>::epsilon();
+      for (int k = 0; k < kMaxImpulseLifts && approaches_after(s); ++k, bump = bump * T(4)) {
+        ra = ra_before;
+        rb = rb_before;
+        j.j = j.j + bump;
+        detail::apply_impulse(ra, g.arm_a, rb, g.arm_b, n, j.j);
+        store();
+        ++counts.impulse_lifts;
+      }
     }
     info.impulse = j.j * n_len;
     ++counts.collisions;

@@ -197,4 +197,10 @@ inline constexpr double kMaxAngularVelocity = 1e4;
 // (6,833), 1: 747 (9,668), the same state hash each time.
 inline constexpr double kRotatingWindowReaches = 1;
 
+// How many times a rotating collision's impulse may grow (by an ulp, then 4, 16, ... times
+// more) while the struck point's exact normal velocity after it still approaches
+// (engine/src/world_rotation.hpp, collide_rotating): 4^12 ulps is far past any rounding of the
+// impulse's terms.
+inline constexpr int kMaxImpulseLifts = 12;
+
 }  // namespace pge

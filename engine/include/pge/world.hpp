@@ -85,6 +85,9 @@ struct EventCounts {
   // certified, pairs with a rotating body: predicted contact times whose rounding could not be
   // decided (docs/rotation.md); each kept the robust placement, within a few ulps.
   std::uint64_t undecided_roundings = 0;
+  // robust and certified, pairs with a rotating body: impulses grown by a few ulps because the
+  // struck point's exact normal velocity after the rounded one still approached (docs/rotation.md).
+  std::uint64_t impulse_lifts = 0;
 };
 
 // The closed-form path the engine holds for a body: p(t) = p0 + v0 (t - t0) + acc (t - t0)^2 / 2

@@ -984,6 +984,42 @@ bool strictly_inside_edge(const RotatingShape<B>& sp, const RotatingShape<B>& sq
   }
 }
 
+// The sign of the rate at which the contact's gap closes at t, by the exact stored paths: the
+// derivative of the feature's gap function (a vertex or a circle against an edge; P the point's
+// shape, Q the edge's), enclosed in W; 0 where W cannot tell. That derivative is the relative
+// velocity of the two material points at the contact along the edge's normal (the normal's own
+// turn adds the point's place along the edge times the turn, which the edge's material point
+// adds back), so it is what an impulse there acts on, free of its rounding.
+template <class W, class B>
+int gap_rate_sign_in(const RotatingShape<B>& sp, const RotatingShape<B>& sq, const RotatingContact<B>& c, const B& t) {
+  const auto wide = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
+  const PathAt<W> P = path_at(widened_path<W>(sp.path), W(t)), Q = path_at(widened_path<W>(sq.path), W(t));
+  const std::size_t n = sq.vertices.size();
+  const Vec2<W> r = c.feature == RotatingFeature::VertexEdge ? wide(sp.vertices[c.point]) : Vec2<W>{};
+  const FeatureFunctions<W> f =
+      point_edge_functions(P, r, W(sp.radius), Q, wide(sq.vertices[c.edge]), wide(sq.vertices[(c.edge + 1) % n]));
+  return f.gap.derivative()(Interval<W>(W(t))).sign();
+}
+// The same in B, then where that cannot tell in its wider type, then in its certifying type
+// (double: long double, then quad); 0 where none can (a rate of exactly zero, or within quad's
+// rounding of it). Not for a circle against a vertex.
+template <class B>
+int gap_rate_sign(const RotatingShape<B>& sp, const RotatingShape<B>& sq, const RotatingContact<B>& c, const B& t) {
+  int sign = gap_rate_sign_in<B>(sp, sq, c, t);
+  using Wide = typename Wider<B>::type;
+  constexpr bool has_wide = std::is_same_v<Wide, double> || std::is_same_v<Wide, long double> || std::is_same_v<Wide, Quad>;
+  if constexpr (has_wide) {
+    if (sign == 0) sign = gap_rate_sign_in<Wide>(sp, sq, c, t);
+  }
+  using Sure = typename Certifying<B>::type;
+  if constexpr (!std::is_void_v<Sure>) {
+    if constexpr (!has_wide || !std::is_same_v<Sure, Wide>) {
+      if (sign == 0) sign = gap_rate_sign_in<Sure>(sp, sq, c, t);
+    }
+  }
+  return sign;
+}
+
 // The corner rule at vertex `point` of P struck at an end of Q's edge `edge` (qa to qb, world):
 // whether the vertex is within the corner slack of an end and, if so, the corner's normal (from
 // Q towards P) and whether the relative motion enters the overlap cone. `arm_p` and `arm_q` are

@@ -101,6 +101,16 @@ template <class T> struct Impulse {
   bool applied = false;
 };
 
+// The impulse j n at the lever arms ra and rb: a loses it, b gains it.
+template <class T>
+void apply_impulse(RigidState<T>& a, const Vec2<T>& ra, RigidState<T>& b, const Vec2<T>& rb, const Vec2<T>& n, const T& j) {
+  const T ran = cross(ra, n), rbn = cross(rb, n);
+  a.v -= n * (j * a.inv_mass);
+  b.v += n * (j * b.inv_mass);
+  a.w -= ran * j * a.inv_inertia;
+  b.w += rbn * j * b.inv_inertia;
+}
+
 // The same with the lever arms ra = P - ca and rb = P - cb given (a caller that knows them more
 // precisely than the difference of world coordinates: detail::RotatingGeometry).
 template <class T>
@@ -114,10 +124,7 @@ Impulse<T> apply_rigid_impulse_with_arms(RigidState<T>& a, const Vec2<T>& ra, Ri
   if (!(out.v_n < T(0)) || !(k > T(0))) return out;
   out.j = -(T(1) + e) * out.v_n / k;
   out.applied = true;
-  a.v -= n * (out.j * a.inv_mass);
-  b.v += n * (out.j * b.inv_mass);
-  a.w -= ran * out.j * a.inv_inertia;
-  b.w += rbn * out.j * b.inv_inertia;
+  apply_impulse(a, ra, b, rb, n, out.j);
   return out;
 }
 
