@@ -234,6 +234,8 @@ template <class T> struct World<T>::Impl {
   detail::RotatingGeometry<T> rotating_geometry(const Scheduled<T>& s, const T& t) const;
   // Whether the contact points approach at s.time (the impulse test).
   bool rotating_approaching(const Scheduled<T>& s) const;
+  // Whether the contact's point certainly approaches at `now` by the exact stored paths (after
+  // an impulse: collide_rotating grows an impulse that leaves it so; E7 in docs/rotation.md).
   bool approaches_after(const Scheduled<T>& s) const;
   // The impulse test of a predictor's contact record of the pair (lo, hi), at its time, with the
   // corner rule's verdict (detail::ContactTest).
