@@ -209,12 +209,9 @@ Row row_from_json_line(const std::string& line) {
 }
 
 Results read_results(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ReportError(path + ": cannot read (missing?)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (text.str().empty()) throw ReportError(path + ": empty file");
-  return from_json_text(text.str(), path);
+  const std::string text = read_text_file(path);
+  if (text.empty()) throw ReportError(path + ": empty file");
+  return from_json_text(text, path);
 }
 
 void write_results(const std::string& path, const Results& r) { write_text_file_atomically(path, to_json_text(r)); }

@@ -63,6 +63,20 @@ template <class B> struct RotatingShape {
 
 enum class RotatingFeature : std::uint8_t { VertexEdge, CircleEdge, CircleVertex };
 
+// The functions of a point of P (vertex `point` for VertexEdge, the circle's centre with its
+// radius for CircleEdge) against Q's edge `edge`, in W from `origin`, the stored values converted
+// exactly: the one construction behind every wider-type decision about a feature (the placement
+// of a crossing, the place along the edge, the gap's rate).
+template <class W, class B>
+FeatureFunctions<W> widened_feature_functions(const RotatingShape<B>& sp, const RotatingShape<B>& sq, RotatingFeature feature,
+                                              std::size_t point, std::size_t edge, const B& origin) {
+  const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
+  const PathAt<W> P = path_at(widened_path<W>(sp.path), W(origin)), Q = path_at(widened_path<W>(sq.path), W(origin));
+  const std::size_t n = sq.vertices.size();
+  const Vec2<W> r = feature == RotatingFeature::VertexEdge ? v(sp.vertices[point]) : Vec2<W>{};
+  return point_edge_functions(P, r, W(sp.radius), Q, v(sq.vertices[edge]), v(sq.vertices[(edge + 1) % n]));
+}
+
 template <class B> struct RotatingContact {
   RootStatus status = RootStatus::None;
   B t{};  // Root: the contact; Undecided: no contact is known before t; None: the window's end
@@ -835,13 +849,8 @@ template <class B> class RotatingPairPredictor {
   // The functions of `which` (a point against an edge) in W, from the search's origin, the stored
   // values converted exactly.
   template <class W> FeatureFunctions<W> wide_features(const Which& which) const {
-    const RotatingShape<B>& sp = which.point_on_a ? a_ : b_;
-    const RotatingShape<B>& sq = which.point_on_a ? b_ : a_;
-    const PathAt<W> P = path_at(widened_path<W>(sp.path), W(origin_)), Q = path_at(widened_path<W>(sq.path), W(origin_));
-    const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
-    const std::size_t n = sq.vertices.size();
-    const Vec2<W> r = which.feature == RotatingFeature::VertexEdge ? v(sp.vertices[which.point]) : Vec2<W>{};
-    return point_edge_functions(P, r, W(sp.radius), Q, v(sq.vertices[which.edge]), v(sq.vertices[(which.edge + 1) % n]));
+    return widened_feature_functions<W>(which.point_on_a ? a_ : b_, which.point_on_a ? b_ : a_, which.feature, which.point,
+                                        which.edge, origin_);
   }
 
   // The function of `which` in W, from the search's origin, the stored values converted exactly.
@@ -955,11 +964,8 @@ template <class W, class B>
 bool meets_inside_edge(const RotatingShape<B>& sp, const RotatingShape<B>& sq, std::size_t point, std::size_t edge,
                        const B& t, const Vec2<B>& u, const Vec2<B>& e) {
   using std::abs;
-  const std::size_t n = sq.vertices.size();
-  const auto v = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
-  const PathAt<W> P = path_at(widened_path<W>(sp.path), W(t)), Q = path_at(widened_path<W>(sq.path), W(t));
-  const FeatureFunctions<W> f =
-      point_edge_functions(P, v(sp.vertices[point]), W(0), Q, v(sq.vertices[edge]), v(sq.vertices[(edge + 1) % n]));
+  // P is an outline here: its radius is 0, as the feature functions of a vertex take it.
+  const FeatureFunctions<W> f = widened_feature_functions<W>(sp, sq, RotatingFeature::VertexEdge, point, edge, t);
   const Interval<W> at{W(t)};
   const Interval<W> along = f.along(at), gap = f.gap(at);
   W margin(0);
@@ -992,13 +998,7 @@ bool strictly_inside_edge(const RotatingShape<B>& sp, const RotatingShape<B>& sq
 // adds back), so it is what an impulse there acts on, free of its rounding.
 template <class W, class B>
 int gap_rate_sign_in(const RotatingShape<B>& sp, const RotatingShape<B>& sq, const RotatingContact<B>& c, const B& t) {
-  const auto wide = [](const Vec2<B>& x) { return Vec2<W>{W(x.x), W(x.y)}; };
-  const PathAt<W> P = path_at(widened_path<W>(sp.path), W(t)), Q = path_at(widened_path<W>(sq.path), W(t));
-  const std::size_t n = sq.vertices.size();
-  const Vec2<W> r = c.feature == RotatingFeature::VertexEdge ? wide(sp.vertices[c.point]) : Vec2<W>{};
-  const FeatureFunctions<W> f =
-      point_edge_functions(P, r, W(sp.radius), Q, wide(sq.vertices[c.edge]), wide(sq.vertices[(c.edge + 1) % n]));
-  return f.gap.derivative()(Interval<W>(W(t))).sign();
+  return widened_feature_functions<W>(sp, sq, c.feature, c.point, c.edge, t).gap.derivative()(Interval<W>(W(t))).sign();
 }
 // The same in B, then where that cannot tell in its wider type, then in its certifying type
 // (double: long double, then quad); 0 where none can (a rate of exactly zero, or within quad's
