@@ -14,12 +14,12 @@
 # Box2D and Chipmunk on the head-on, Newton's cradle, bullet and snooker scenes of
 # fixtures/scenes/peers. About 1 minute of CPU (the first build aside). --full runs the full sweep
 # instead: 2,000 events per scene, 100 random scenes, the gas up to 10,000, a 200,000-event drift
-# run, and the peers part on every compare scene (the two 1,000-ball gases too): about 25 minutes
+# run, and the peers part on every compare scene (the two 1,000-ball gases too): about 22 minutes
 # of CPU, most of it the quad rows and the peers part on the two gases. Rows are measured on every
 # core at once (pge report --jobs, default one per core; pass --jobs 1 for one at a time), the
 # longest first (reports/costs-full.json, then each run's own costs.json), so the wall time is about
 # the CPU time over the cores, but never less than the longest single row (fast in quad on the
-# 1000-turn near miss, about 7.5 minutes): 11 to 13 minutes on 2 cores; the line at the end says
+# 1000-turn near miss, about 4 minutes): 11 to 13 minutes on 2 cores; the line at the end says
 # how long it took.
 #
 # While it measures: on a terminal, one line redrawn in place (rows done, the part, time elapsed

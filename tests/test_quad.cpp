@@ -135,4 +135,43 @@ TEST(QuadConversion, NarrowingRoundsToNearest) {
   }
 }
 
+// sign(a b - c) (pge/scalar.hpp's exact_product_minus_sign, in integers for Quad): against the
+// exact product in 240 bits (two 113-bit significands need 226), on products rounded and their
+// neighbours (where the sign is the rounding error's), unrelated values of either sign, zeros,
+// and every range: subnormal factors and results, and products far past Dekker's splitting range
+// (near overflow), where the integers must still be exact.
+TEST(QuadProductSign, ExactOnEveryRange) {
+  std::mt19937_64 rng(20261207);
+  const auto exact_sign = [](const Quad& a, const Quad& b, const Quad& c) {
+    const Wide d = Wide(a) * Wide(b) - Wide(c);
+    return (d > 0) - (d < 0);
+  };
+  const int ranges[][2] = {{-4, 4}, {-200, 200}, {-8000, 8000}, {-16494, -16300}, {8100, 8190}};
+  int checked = 0, nonzero_errors = 0;
+  for (const auto& r : ranges) {
+    for (int i = 0; i < 20'000; ++i) {
+      Quad a = random_quad(rng, r[0], r[1]), b = random_quad(rng, r[0], r[1]);
+      if (rng() % 2) a = -a;
+      if (rng() % 2) b = -b;
+      const Quad p = a * b;
+      Quad other = random_quad(rng, r[0], r[1]);
+      if (rng() % 2) other = -other;
+      for (const Quad& c : {p, up(p), down(p), other, -p, Quad(0)}) {
+        if (!isfinite(c)) continue;
+        const int want = exact_sign(a, b, c);
+        ASSERT_EQ(pge::detail::exact_product_minus_sign(a, b, c), want) << a << " * " << b << " - " << c;
+        nonzero_errors += c == p && want != 0;
+        ++checked;
+      }
+    }
+  }
+  for (const Quad& z : {Quad(0), Quad(-0.0)}) {
+    EXPECT_EQ(pge::detail::exact_product_minus_sign(z, Quad(3), Quad(2)), -1);
+    EXPECT_EQ(pge::detail::exact_product_minus_sign(Quad(3), z, Quad(-2)), 1);
+    EXPECT_EQ(pge::detail::exact_product_minus_sign(z, z, z), 0);
+  }
+  EXPECT_GE(checked, 500'000);
+  EXPECT_GE(nonzero_errors, 50'000);  // most rounded products are inexact: the error's sign is tested
+}
+
 }  // namespace

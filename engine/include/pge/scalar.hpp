@@ -10,7 +10,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 #include <type_traits>
@@ -30,12 +32,91 @@ using QuadSoftware = boost::multiprecision::cpp_bin_float_quad;  // the old type
 
 namespace detail {
 
-// sign(a b - c), exactly, for a b within a factor of two of c (c = a b rounded, say) and far from
-// overflow and underflow, in a binary type B without a fused multiply-add: Dekker's exact product
-// (Dekker, "A floating-point technique for extending the available precision", Numer. Math. 18,
-// 1971: a p-bit significand splits into halves with the constant 2^ceil(p/2) + 1), then p - c
-// exact by Sterbenz's lemma.
+__extension__ using U128 = unsigned __int128;  // GCC's (and Clang's) 128-bit integer
+// A 256-bit unsigned integer, hi 2^128 + lo: the exact product of two binary128 significands.
+struct U256 {
+  U128 hi = 0, lo = 0;
+};
+inline int bit_length(U128 x) {
+  const auto top = static_cast<std::uint64_t>(x >> 64), bottom = static_cast<std::uint64_t>(x);
+  if (top != 0) return 128 - __builtin_clzll(top);
+  return bottom != 0 ? 64 - __builtin_clzll(bottom) : 0;
+}
+inline int bit_length(const U256& x) { return x.hi != 0 ? 128 + bit_length(x.hi) : bit_length(x.lo); }
+inline U256 multiply(U128 a, U128 b) {
+  using U = U128;
+  const U a0 = static_cast<std::uint64_t>(a), a1 = a >> 64, b0 = static_cast<std::uint64_t>(b), b1 = b >> 64;
+  const U low = a0 * b0, cross1 = a0 * b1, cross2 = a1 * b0;
+  const U cross = cross1 + cross2;
+  const U cross_carry = cross < cross1 ? U(1) << 64 : U(0);  // 2^128 of `cross`: 2^192 of the product
+  U256 r;
+  r.lo = low + (cross << 64);
+  r.hi = a1 * b1 + (cross >> 64) + cross_carry + (r.lo < low ? 1 : 0);
+  return r;
+}
+inline U256 shifted_left(const U256& x, int k) {  // 0 <= k < 256, no bit lost (the caller's bound)
+  if (k == 0) return x;
+  if (k >= 128) return {x.lo << (k - 128), 0};
+  return {(x.hi << k) | (x.lo >> (128 - k)), x.lo << k};
+}
+inline int compare(const U256& x, const U256& y) {
+  if (x.hi != y.hi) return x.hi < y.hi ? -1 : 1;
+  return x.lo < y.lo ? -1 : (x.lo == y.lo ? 0 : 1);
+}
+
+// sign(a b - c), exactly, for any finite binary128 values (GCC's __float128), in integers: each
+// value is its significand times a power of two (subnormals too), the two significands' product
+// has at most 226 bits, and the two sides are compared first by their top bits' places, then, in
+// the same binade, shifted onto one grid (at most 226 bits). Not finite: nothing (the caller
+// decides otherwise).
+inline std::optional<int> quad_product_minus_sign(const __float128& a, const __float128& b, const __float128& c) {
+  struct Parts {
+    U128 significand;
+    int exponent;  // |x| = significand 2^exponent
+    bool negative;
+  };
+  const auto parts = [](const __float128& x, Parts& out) {
+    U128 bits;
+    static_assert(sizeof bits == sizeof x);
+    std::memcpy(&bits, &x, sizeof bits);
+    const auto biased = static_cast<int>((bits >> 112) & 0x7fff);
+    if (biased == 0x7fff) return false;
+    const U128 fraction = bits & ((static_cast<U128>(1) << 112) - 1);
+    out.negative = (bits >> 127) != 0;
+    out.significand = biased == 0 ? fraction : fraction | (static_cast<U128>(1) << 112);
+    out.exponent = (biased == 0 ? 1 : biased) - 16383 - 112;
+    return true;
+  };
+  Parts pa{}, pb{}, pc{};
+  if (!parts(a, pa) || !parts(b, pb) || !parts(c, pc)) return std::nullopt;
+  const int sab = pa.significand == 0 || pb.significand == 0 ? 0 : (pa.negative != pb.negative ? -1 : 1);
+  const int sc = pc.significand == 0 ? 0 : (pc.negative ? -1 : 1);
+  if (sab == 0) return -sc;
+  if (sc == 0 || sab != sc) return sab;
+  // Same signs: sab times the comparison of |a b| = P 2^pe with |c| = Q 2^qe.
+  U256 p = multiply(pa.significand, pb.significand), q{0, pc.significand};
+  const int pe = pa.exponent + pb.exponent, qe = pc.exponent;
+  const int top_p = bit_length(p) + pe, top_q = bit_length(q) + qe;
+  if (top_p != top_q) return top_p > top_q ? sab : -sab;
+  // One binade: the side with the larger exponent moves onto the other's grid, to at most the
+  // other's length (226 bits).
+  if (pe > qe) p = shifted_left(p, pe - qe);
+  if (qe > pe) q = shifted_left(q, qe - pe);
+  return sab * compare(p, q);
+}
+
+// sign(a b - c), exactly. Quad: in integers (quad_product_minus_sign), for any finite values.
+// Otherwise for a b within a factor of two of c (c = a b rounded, say) and far from overflow and
+// underflow, in a binary type B without a fused multiply-add: Dekker's exact product (Dekker, "A
+// floating-point technique for extending the available precision", Numer. Math. 18, 1971: a
+// p-bit significand splits into halves with the constant 2^ceil(p/2) + 1), then p - c exact by
+// Sterbenz's lemma. (For Quad the integers take 43 ns against Dekker's 345, with the product
+// itself, in software: the correctly rounded square root below takes two such signs.)
 template <class B> int exact_product_minus_sign(const B& a, const B& b, const B& c) {
+  if constexpr (std::is_same_v<B, Quad>) {
+    if (const std::optional<int> s = quad_product_minus_sign(a.backend().value(), b.backend().value(), c.backend().value()))
+      return *s;
+  }
   constexpr int half = (std::numeric_limits<B>::digits + 1) / 2;
   const B split = B(std::uint64_t{1} << half) + B(1);
   const auto halves = [&](const B& x, B& hi, B& lo) {
@@ -65,10 +146,25 @@ inline Quad quad_sqrt(const Quad& x) {
     --e;
   }
   Quad r(sqrtq(m.backend().value()));
-  const auto up = [](const Quad& v) { return Quad(nextafterq(v.backend().value(), 4)); };
-  const auto down = [](const Quad& v) { return Quad(nextafterq(v.backend().value(), 0)); };
-  for (int k = 0; k < 4 && exact_product_minus_sign(r, up(r), m) < 0; ++k) r = up(r);
-  for (int k = 0; k < 4 && exact_product_minus_sign(r, down(r), m) >= 0; ++k) r = down(r);
+  // r's neighbours: r is positive and normal (near 1), so they are its encoding plus or minus one.
+  const auto step = [](const Quad& v, int by) {
+    U128 bits;
+    std::memcpy(&bits, &v.backend().value(), sizeof bits);
+    bits = by > 0 ? bits + 1 : bits - 1;
+    __float128 out;
+    std::memcpy(&out, &bits, sizeof out);
+    return Quad(out);
+  };
+  for (int k = 0; k < 4; ++k) {
+    const Quad next = step(r, 1);
+    if (exact_product_minus_sign(r, next, m) >= 0) break;
+    r = next;
+  }
+  for (int k = 0; k < 4; ++k) {
+    const Quad next = step(r, -1);
+    if (exact_product_minus_sign(r, next, m) < 0) break;
+    r = next;
+  }
   return ldexp(r, e / 2);
 }
 

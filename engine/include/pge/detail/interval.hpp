@@ -107,8 +107,8 @@ template <class B> struct Rounding {
     return (e > B(0)) - (e < B(0));
   }
   // sign(x y - r): one fused multiply-add for double (exact by IEEE 754: x y - r rounded once,
-  // and its sign is the exact error's), Dekker's exact product (pge/scalar.hpp) for float, long
-  // double and Quad.
+  // and its sign is the exact error's), Dekker's exact product (pge/scalar.hpp) for float and
+  // long double, the significands' product in integers for Quad (pge/scalar.hpp).
   static int product_error_sign(const B& x, const B& y, const B& r) {
     if constexpr (std::is_same_v<B, double>) {
       const B e = std::fma(x, y, -r);
@@ -146,7 +146,6 @@ template <class B> struct Rounding {
       const int shift = er + 16446 - ex - ey;
       int magnitude = -1;
       if (shift == 63 || shift == 64) {
-        __extension__ using U128 = unsigned __int128;
         const U128 p = static_cast<U128>(px.significand) * py.significand;
         const U128 q = static_cast<U128>(pr.significand) << shift;
         magnitude = (p > q) - (p < q);
