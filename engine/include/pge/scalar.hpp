@@ -63,12 +63,24 @@ inline int compare(const U256& x, const U256& y) {
   if (x.hi != y.hi) return x.hi < y.hi ? -1 : 1;
   return x.lo < y.lo ? -1 : (x.lo == y.lo ? 0 : 1);
 }
+// sign(p 2^pe - q 2^qe), exactly, for p, q of at most 255 bits: first by their top bits' places,
+// then, in one binade, on one grid (the side with the larger exponent shifted left, to at most
+// the other's length). The products of quad_product_minus_sign and of x87 long doubles
+// (Rounding::quick_product_error_sign, pge/detail/interval.hpp) are decided here.
+inline int compare_scaled(U256 p, int pe, U256 q, int qe) {
+  const bool p_zero = p.hi == 0 && p.lo == 0, q_zero = q.hi == 0 && q.lo == 0;
+  if (p_zero || q_zero) return p_zero == q_zero ? 0 : (p_zero ? -1 : 1);
+  const int top_p = bit_length(p) + pe, top_q = bit_length(q) + qe;
+  if (top_p != top_q) return top_p > top_q ? 1 : -1;
+  if (pe > qe) p = shifted_left(p, pe - qe);
+  if (qe > pe) q = shifted_left(q, qe - pe);
+  return compare(p, q);
+}
 
 // sign(a b - c), exactly, for any finite binary128 values (GCC's __float128), in integers: each
-// value is its significand times a power of two (subnormals too), the two significands' product
-// has at most 226 bits, and the two sides are compared first by their top bits' places, then, in
-// the same binade, shifted onto one grid (at most 226 bits). Not finite: nothing (the caller
-// decides otherwise).
+// value is its significand times a power of two (subnormals too), and the two significands'
+// product (at most 226 bits) is compared with the third's (compare_scaled). Not finite: nothing
+// (the caller decides otherwise).
 inline std::optional<int> quad_product_minus_sign(const __float128& a, const __float128& b, const __float128& c) {
   struct Parts {
     U128 significand;
@@ -93,16 +105,9 @@ inline std::optional<int> quad_product_minus_sign(const __float128& a, const __f
   const int sc = pc.significand == 0 ? 0 : (pc.negative ? -1 : 1);
   if (sab == 0) return -sc;
   if (sc == 0 || sab != sc) return sab;
-  // Same signs: sab times the comparison of |a b| = P 2^pe with |c| = Q 2^qe.
-  U256 p = multiply(pa.significand, pb.significand), q{0, pc.significand};
-  const int pe = pa.exponent + pb.exponent, qe = pc.exponent;
-  const int top_p = bit_length(p) + pe, top_q = bit_length(q) + qe;
-  if (top_p != top_q) return top_p > top_q ? sab : -sab;
-  // One binade: the side with the larger exponent moves onto the other's grid, to at most the
-  // other's length (226 bits).
-  if (pe > qe) p = shifted_left(p, pe - qe);
-  if (qe > pe) q = shifted_left(q, qe - pe);
-  return sab * compare(p, q);
+  // Same signs: sab times the comparison of |a b| with |c|.
+  return sab * compare_scaled(multiply(pa.significand, pb.significand), pa.exponent + pb.exponent,
+                              U256{0, pc.significand}, pc.exponent);
 }
 
 // sign(a b - c), exactly. Quad: in integers (quad_product_minus_sign), for any finite values.

@@ -139,19 +139,12 @@ template <class B> struct Rounding {
       const int ex = px.sign_exponent & 0x7fff, ey = py.sign_exponent & 0x7fff, er = pr.sign_exponent & 0x7fff;
       if ((px.significand & py.significand & integer_bit) == 0 || ex == 0 || ey == 0 || ex == 0x7fff || ey == 0x7fff)
         return false;
-      // |x| = mx 2^(ex - 16446) for a normal x (bias 16383, 63 fraction bits), so |x y| - |r|
-      // has the sign of mx my - mr 2^(er + 16446 - ex - ey); the product of the significands
-      // lies in [2^126, 2^128), so the shift is 63 or 64, or 65 where r rounded up to 2^128
-      // units of it (then |r| is the larger).
-      const int shift = er + 16446 - ex - ey;
-      int magnitude = -1;
-      if (shift == 63 || shift == 64) {
-        const U128 p = static_cast<U128>(px.significand) * py.significand;
-        const U128 q = static_cast<U128>(pr.significand) << shift;
-        magnitude = (p > q) - (p < q);
-      } else if (shift != 65) {
-        return false;
-      }
+      // |x| = mx 2^(ex - 16446) for a normal x (bias 16383, 63 fraction bits), r (ordinary) too:
+      // |x y| - |r| has the sign of the significands' 128-bit product against r's, scaled.
+      constexpr int bias = 16446;
+      const int magnitude = detail::compare_scaled(
+          detail::U256{0, static_cast<U128>(px.significand) * py.significand}, ex + ey - 2 * bias,
+          detail::U256{0, pr.significand}, er - bias);
       sign = (x < B(0)) != (y < B(0)) ? -magnitude : magnitude;
       return true;
     } else {
