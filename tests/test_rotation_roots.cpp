@@ -18,6 +18,7 @@
 #include <limits>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <algorithm>
 #include <vector>
 
@@ -89,16 +90,33 @@ TEST(RotationTrig, LongDoubleStepsAreLibmsNextafter) {
   EXPECT_GT(checked, 200000);
 }
 
-// x y rounded by the FPU in `mode` (fesetround sets SSE's and the x87's rounding alike): the
-// independent reference for the emulated directed rounding below. The volatile operands keep
-// the product between the mode changes.
-template <class B> B directed_product(const B x, const B y, const int mode) {
+// x y (or x / y) rounded by the FPU in `mode` (fesetround sets SSE's and the x87's rounding
+// alike): the independent reference for the emulated directed rounding below. The volatile
+// operands keep the operation between the mode changes.
+template <class B> B directed(const B x, const B y, const int mode, const bool quotient = false) {
   const int old = std::fegetround();
   std::fesetround(mode);
   volatile B a = x, b = y;
-  volatile B r = a * b;
+  volatile B r = quotient ? a / b : a * b;
   std::fesetround(old);
   return r;
+}
+
+// Emulated bounds [down, up] of x y (or x / y) against the FPU's directed roundings: the same
+// where the emulation is tight, at most one value further out elsewhere.
+template <class B> void expect_directed(const B x, const B y, const bool quotient, const B down, const B up, const bool tight) {
+  const B fpu_down = directed(x, y, FE_DOWNWARD, quotient), fpu_up = directed(x, y, FE_UPWARD, quotient);
+  std::ostringstream what;
+  what << static_cast<double>(x) << (quotient ? " / " : " * ") << static_cast<double>(y);
+  if (tight) {
+    ASSERT_EQ(down, fpu_down) << what.str();
+    ASSERT_EQ(up, fpu_up) << what.str();
+    return;
+  }
+  ASSERT_LE(down, fpu_down) << what.str();
+  ASSERT_GE(down, pge::detail::interval_next_down(fpu_down)) << what.str();
+  ASSERT_GE(up, fpu_up) << what.str();
+  ASSERT_LE(up, pge::detail::interval_next_up(fpu_up)) << what.str();
 }
 
 // Interval products round each bound outward in round-to-nearest arithmetic (interval.hpp's
@@ -122,19 +140,11 @@ template <class B> void check_products_round_as_the_fpu_does(std::uint64_t seed)
   long ordinary = 0, exact = 0, edge = 0;
   const auto check = [&](const B x, const B y) {
     const B down = R::mul_down(x, y), up = R::mul_up(x, y);
-    const B fpu_down = directed_product(x, y, FE_DOWNWARD), fpu_up = directed_product(x, y, FE_UPWARD);
-    if (R::ordinary(x * y)) {
-      ++ordinary;
-      exact += fpu_down == fpu_up;
-      ASSERT_EQ(down, fpu_down) << static_cast<double>(x) << " * " << static_cast<double>(y);
-      ASSERT_EQ(up, fpu_up) << static_cast<double>(x) << " * " << static_cast<double>(y);
-    } else {
-      ++edge;
-      ASSERT_LE(down, fpu_down) << static_cast<double>(x) << " * " << static_cast<double>(y);
-      ASSERT_GE(down, pge::detail::interval_next_down(fpu_down));
-      ASSERT_GE(up, fpu_up) << static_cast<double>(x) << " * " << static_cast<double>(y);
-      ASSERT_LE(up, pge::detail::interval_next_up(fpu_up));
-    }
+    const bool tight = R::ordinary(x * y);
+    ordinary += tight;
+    edge += !tight;
+    exact += tight && down == up;
+    expect_directed(x, y, false, down, up, tight);
   };
   for (int i = 0; i < 200000; ++i) check(random_value(-60, 60), random_value(-60, 60));
   for (int i = 0; i < 50000; ++i) check(random_value(-max_exp + 8, max_exp - 8), random_value(-max_exp / 2, max_exp / 2));
@@ -160,6 +170,48 @@ template <class B> void check_products_round_as_the_fpu_does(std::uint64_t seed)
 TEST(RotationTrig, ProductsRoundOutwardAsTheFpuDoes) {
   check_products_round_as_the_fpu_does<double>(5);
   check_products_round_as_the_fpu_does<long double>(6);
+}
+
+// Quotients by a positive value (Rounding::div_down, div_up: the error's sign as that of r d - a)
+// round outward the same way: exactly the FPU's directed roundings where the quotient and the
+// dividend are ordinary numbers and Dekker can split the quotient and the divisor (float's
+// quotients past about 5e30 it cannot), at most one value further out elsewhere. A dividend near
+// underflow was wrong: with r ordinary, r d - a can be non-zero yet below the smallest
+// subnormal, and the fused multiply-add (double) or Dekker's error terms rounded it to zero, so
+// r came back as an exact bound. In double 2^-1026 / (2^-106 (1 + 2^-52)): r = 2^-920 (1 - 2^-52),
+// r d - a = -2^-1130, while the true quotient is above r.
+template <class B> void check_quotients_round_as_the_fpu_does(std::uint64_t seed) {
+  using R = pge::detail::Rounding<B>;
+  std::mt19937_64 rng(seed);
+  constexpr int digits = std::numeric_limits<B>::digits, max_exp = std::numeric_limits<B>::max_exponent,
+                min_exp = std::numeric_limits<B>::min_exponent;
+  const B eps = std::numeric_limits<B>::epsilon();
+  const auto value = [&](int lo_exp, int hi_exp) {  // a random significand in [1, 2) times 2^e
+    const B m = rng() % 4 == 0 ? B(1) + B(rng() % 1024) / B(1024) : B(1) + B(rng() >> 11) * B(0x1p-53);
+    return std::ldexp(m, lo_exp + static_cast<int>(rng() % static_cast<std::uint64_t>(hi_exp - lo_exp + 1)));
+  };
+  long ordinary = 0, edge = 0;
+  const auto check = [&](const B a, const B d) {
+    const bool tight = R::ordinary(a / d) && R::ordinary(a) && R::splittable(a / d, d);
+    ordinary += tight;
+    edge += !tight;
+    expect_directed(a, d, true, R::div_down(a, d), R::div_up(a, d), tight);
+  };
+  const auto sign = [&](const B v) { return rng() % 2 ? v : B(-v); };
+  for (int i = 0; i < 100000; ++i) check(sign(value(-60, 60)), value(-60, 60));
+  for (int i = 0; i < 20000; ++i) check(sign(value(-max_exp + 8, max_exp - 8)), value(-max_exp / 2, max_exp / 2));
+  for (int i = 0; i < 20000; ++i)  // dividends near and below underflow, quotients mostly ordinary
+    check(sign(std::ldexp(value(0, 0), min_exp - 1 - static_cast<int>(rng() % 60))), value(-2 * digits - 10, -digits));
+  check(std::ldexp(B(1), min_exp - 5), std::ldexp(B(1) + eps, -2 * digits));
+  for (const B z : {B(0), B(-0.0)}) check(z, value(-10, 10));
+  EXPECT_GT(ordinary, 100000);
+  EXPECT_GT(edge, 10000);
+}
+
+TEST(RotationTrig, QuotientsRoundOutwardAsTheFpuDoes) {
+  check_quotients_round_as_the_fpu_does<float>(7);
+  check_quotients_round_as_the_fpu_does<double>(8);
+  check_quotients_round_as_the_fpu_does<long double>(9);
 }
 
 TEST(RotationTrig, PointEnclosuresHoldTheTrueValueAndAreTight) {

@@ -199,15 +199,18 @@ template <class B> struct Rounding {
     const B r = x * y;
     return up(r, ordinary(r) && splittable(x, y) ? product_error_sign(x, y, r) : 1);
   }
+  // A quotient's error sign is that of r d - a, exact only where a is ordinary too: below that
+  // the difference can fall under the smallest subnormal and round to zero (2^-1026 divided by
+  // 2^-106 (1 + 2^-52) in double), and the bound widens by a value instead.
   static B div_down(const B& a, const B& d) {
     if (a == B(0)) return B(0);
     const B r = a / d;
-    return down(r, ordinary(r) && splittable(r, d) ? quotient_error_sign(a, d, r) : -1);
+    return down(r, ordinary(r) && ordinary(a) && splittable(r, d) ? quotient_error_sign(a, d, r) : -1);
   }
   static B div_up(const B& a, const B& d) {
     if (a == B(0)) return B(0);
     const B r = a / d;
-    return up(r, ordinary(r) && splittable(r, d) ? quotient_error_sign(a, d, r) : 1);
+    return up(r, ordinary(r) && ordinary(a) && splittable(r, d) ? quotient_error_sign(a, d, r) : 1);
   }
 };
 
