@@ -34,11 +34,13 @@ inline auto World<T>::Impl::predict(BodyIndex lo, BodyIndex hi, const T& limit) 
       if (exact || !overlapping) return exact;
     }
     // Apart and approaching without relative acceleration (most of a gas's predictions): the
-    // robust walk's answer by its short form (roots_robust.hpp).
+    // robust walk's answer by its short form (roots_robust.hpp), for certified too. Its answer
+    // is decided by signs with proven error bounds (a doubt leaves it to the solver), and a
+    // predicted time only orders the queue: robust's and certified's event times are both
+    // re-derived from the exact paths (refine_near_top), so certified's correctly rounded root
+    // of the rounded polynomial bought nothing there (docs/solvers.md).
     T root{};
-    const detail::ParabolaRoot parabola = solver == SolverKind::Robust
-                                              ? detail::approaching_parabola_root(p, T(horizon - now), root)
-                                              : detail::ParabolaRoot::Unsure;
+    const detail::ParabolaRoot parabola = detail::approaching_parabola_root(p, T(horizon - now), root);
     if (parabola == detail::ParabolaRoot::None) return std::nullopt;
     if (parabola == detail::ParabolaRoot::Root) {
       c = PredictedContact<T>{root, ContactKind::CircleCircle, 0, 0, false};
