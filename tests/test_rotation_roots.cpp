@@ -119,6 +119,15 @@ template <class B> void expect_directed(const B x, const B y, const bool quotien
   ASSERT_LE(up, pge::detail::interval_next_up(fpu_up)) << what.str();
 }
 
+// A random positive value m 2^e for the rounding tests below: e uniform in [lo_exp, hi_exp], the
+// significand m in [1, 2) a short one (exact products and quotients) one time in four, else random
+// bits down to double's precision and, for a wider B, 53 bits more.
+template <class B> B random_binade_value(std::mt19937_64& rng, int lo_exp, int hi_exp) {
+  B m = B(1) + B(rng() >> 11) * B(0x1p-53) + (std::numeric_limits<B>::digits > 53 ? B(rng() >> 11) * B(0x1p-106) : B(0));
+  if (rng() % 4 == 0) m = B(1) + B(rng() % 1024) / B(1024);
+  return std::ldexp(m, lo_exp + static_cast<int>(rng() % static_cast<std::uint64_t>(hi_exp - lo_exp + 1)));
+}
+
 // Interval products round each bound outward in round-to-nearest arithmetic (interval.hpp's
 // Rounding: the product's error sign from a fused multiply-add in double, from the significands'
 // integer product for two normal x87 long doubles, from Dekker's splitting otherwise). Where the
@@ -131,10 +140,7 @@ template <class B> void check_products_round_as_the_fpu_does(std::uint64_t seed)
   std::mt19937_64 rng(seed);
   const int max_exp = std::numeric_limits<B>::max_exponent;
   const auto random_value = [&](int lo_exp, int hi_exp) {
-    B m = B(1) + B(rng() >> 11) * B(0x1p-53) + (std::numeric_limits<B>::digits > 53 ? B(rng() >> 11) * B(0x1p-106) : B(0));
-    if (rng() % 4 == 0) m = B(1) + B(rng() % 1024) / B(1024);  // short significands: exact products
-    const int e = lo_exp + static_cast<int>(rng() % static_cast<std::uint64_t>(hi_exp - lo_exp + 1));
-    const B v = std::ldexp(m, e);
+    const B v = random_binade_value<B>(rng, lo_exp, hi_exp);
     return rng() % 2 ? v : B(-v);
   };
   long ordinary = 0, exact = 0, edge = 0;
@@ -186,10 +192,7 @@ template <class B> void check_quotients_round_as_the_fpu_does(std::uint64_t seed
   constexpr int digits = std::numeric_limits<B>::digits, max_exp = std::numeric_limits<B>::max_exponent,
                 min_exp = std::numeric_limits<B>::min_exponent;
   const B eps = std::numeric_limits<B>::epsilon();
-  const auto value = [&](int lo_exp, int hi_exp) {  // a random significand in [1, 2) times 2^e
-    const B m = rng() % 4 == 0 ? B(1) + B(rng() % 1024) / B(1024) : B(1) + B(rng() >> 11) * B(0x1p-53);
-    return std::ldexp(m, lo_exp + static_cast<int>(rng() % static_cast<std::uint64_t>(hi_exp - lo_exp + 1)));
-  };
+  const auto value = [&](int lo_exp, int hi_exp) { return random_binade_value<B>(rng, lo_exp, hi_exp); };
   long ordinary = 0, edge = 0;
   const auto check = [&](const B a, const B d) {
     const bool tight = R::ordinary(a / d) && R::ordinary(a) && R::splittable(a / d, d);
