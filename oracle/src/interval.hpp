@@ -80,8 +80,11 @@ class Interval {
   // one sign (the common case: a point, a reach, a time span), the four only when both straddle
   // zero. The chosen ends are the smallest and largest exact products, and rounding is monotone,
   // so the result encloses what the four products would (at an exact zero beside an underflow
-  // it is the tighter of the two, both enclosing the exact product).
-  friend Interval operator*(const Interval& a, const Interval& b) {
+  // it is the tighter of the two, both enclosing the exact product). Always inlined: g++ -O2
+  // kept it a call, and inlined at its callers (the spatial filter's bounds, the reference paths)
+  // the referee judged the 200-ball gas 5% faster (47,000-48,000 -> 50,000-51,000 events/s, pge
+  // check, RelWithDebInfo, 5 alternated runs; 2.2% fewer instructions by callgrind).
+  [[gnu::always_inline]] friend Interval operator*(const Interval& a, const Interval& b) {
     const auto bounds = [](double x0, double y0, double x1, double y1) {
       const double r0 = x0 * y0, r1 = x1 * y1;
       if (std::isnan(r0) || std::isnan(r1)) return whole();
