@@ -356,7 +356,7 @@ if peer_rows:
 L += ["## The main job", "",
       f"`scripts/run-bundled.sh` with its default sweep (the quick report over the bundled fixtures with the four small peer "
       f"scenes, every event judged by the oracle) took **{bundled_seconds:.0f} s** of wall time, pge already built "
-      "(`--full`: the full report, about 13 minutes on 2 cores).", "",
+      "(`--full`: the full report, 11 to 13 minutes on 2 cores).", "",
       "```sh", "PGE_BUILD_DIR=" + build + " " + commands["bundled"][0], "```", ""]
 L += ["## Pictures", "",
       "The README's pictures, made by the same run: `docs/img/snooker.svg` and `docs/img/speed-error.svg` (the quick report's chart).", "",
