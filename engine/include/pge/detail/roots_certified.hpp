@@ -44,10 +44,18 @@ namespace detail {
 // measure (tests assert that common cases stay in floating point).
 inline thread_local std::uint64_t certified_exact_fallbacks = 0;
 
+// The decision from the Horner value v of a degree-d polynomial in W and the same Horner sum s
+// over the coefficients' and the point's magnitudes (wide_sign_of's error bound).
+template <class W> int wide_decision(const W& v, const W& s, int d) {
+  const W bound = s * W(2 * d + 2) * (std::numeric_limits<W>::epsilon() / W(2)) + W(2 * d + 2) * std::numeric_limits<W>::min();
+  if (v > bound) return 1;
+  if (v < W(-bound)) return -1;
+  if (v == W(0) && s == W(0)) return 0;
+  return 2;
+}
 // The sign of q^(k)(x) evaluated in a wider type W in which x and j! / (j - k)! c_j are exact,
 // with its Horner error bound: 1 or -1 when that decides, 2 when it cannot, 0 for an exact zero.
 template <class T, class W> int wide_sign_of(const Poly<T>& q, int k, const W& x) {
-  const int d = q.degree - k;
   W v(0), s(0);
   const W ax = x < W(0) ? W(-x) : x;
   for (int j = q.degree; j >= k; --j) {
@@ -56,11 +64,22 @@ template <class T, class W> int wide_sign_of(const Poly<T>& q, int k, const W& x
     v = v * x + c;
     s = s * ax + (c < W(0) ? W(-c) : c);
   }
-  const W bound = s * W(2 * d + 2) * (std::numeric_limits<W>::epsilon() / W(2)) + W(2 * d + 2) * std::numeric_limits<W>::min();
-  if (v > bound) return 1;
-  if (v < W(-bound)) return -1;
-  if (v == W(0) && s == W(0)) return 0;
-  return 2;
+  return wide_decision(v, s, q.degree - k);
+}
+// wide_sign_of(q, 0, x) and wide_sign_of(q, 0, y) in one pass: the same operations on each, the
+// two Horner chains interleaved (each step of one waits on the last; the other fills the wait).
+template <class T, class W> void wide_signs_of(const Poly<T>& q, const W& x, const W& y, int& sx, int& sy) {
+  W vx(0), sumx(0), vy(0), sumy(0);
+  const W ax = x < W(0) ? W(-x) : x, ay = y < W(0) ? W(-y) : y;
+  for (int j = q.degree; j >= 0; --j) {
+    const W c = W(q.c[j]), mc = c < W(0) ? W(-c) : c;
+    vx = vx * x + c;
+    vy = vy * y + c;
+    sumx = sumx * ax + mc;
+    sumy = sumy * ay + mc;
+  }
+  sx = wide_decision(vx, sumx, q.degree);
+  sy = wide_decision(vy, sumy, q.degree);
 }
 
 // --- the common case, proved without the derivatives' structure (docs/solvers.md, "certified")
@@ -192,7 +211,8 @@ template <class T> Quick quick_earliest_root(const Poly<T>& p, const T& lo, cons
   auto sign_between = [&](const T& a, const T& b) { return wide_sign_of(p, 0, (W(a) + W(b)) / W(2)); };
   if (!(x > lo && x < hi)) return Quick::Undecided;
   T up = interval_next_up(x), down = interval_next_down(x);
-  int s_up = sign_between(x, up), s_down = sign_between(down, x);
+  int s_up = 0, s_down = 0;
+  wide_signs_of(p, (W(x) + W(up)) / W(2), (W(down) + W(x)) / W(2), s_up, s_down);
   for (int step = 0; !(s_up == -1 && s_down == 1); ++step) {
     if (step == 4) return Quick::Undecided;
     if (s_up == 1 && s_down == 1) {  // the root lies above x+'s midpoint
