@@ -179,10 +179,13 @@ figure("scale_1e5_predictions_per_event", "pair predictions per collision, 100,0
        round(s5run["predictions"] / s5run["collisions"], 1), "predictions", "scale-1e5", "scale", SAME)
 
 # 3. The oracle.
+def judged_per_second(c):
+    o = c["oracle"]
+    return o["events"] / o["seconds"] if o["seconds"] > 0 else 0
 checks = [json.load(open(f"{out}/check-gas-200-{k}.json"))["scenes"][0] for k in (1, 2, 3)]
-chk = max(checks, key=lambda c: c["oracle"]["events"] / c["oracle"]["seconds"] if c["oracle"]["seconds"] > 0 else 0)
+chk = max(checks, key=judged_per_second)
 o = chk["oracle"]
-oracle_eps = o["events"] / o["seconds"] if o["seconds"] > 0 else 0
+oracle_eps = judged_per_second(chk)
 bad = sum(v for k, v in chk["verdicts"].items() if k in ("miss", "phantom"))
 figure("oracle_events_per_second", "oracle: events judged per second, 200-ball gas", round(oracle_eps), "events/s", "oracle", "oracle",
        "fastest")
