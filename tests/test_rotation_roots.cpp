@@ -15,6 +15,7 @@
 #include <cfenv>
 #include <cmath>
 #include <cstdint>
+#include <iomanip>
 #include <limits>
 #include <optional>
 #include <random>
@@ -90,24 +91,24 @@ TEST(RotationTrig, LongDoubleStepsAreLibmsNextafter) {
   EXPECT_GT(checked, 200000);
 }
 
-// x y (or x / y) rounded by the FPU in `mode` (fesetround sets SSE's and the x87's rounding
-// alike): the independent reference for the emulated directed rounding below. The volatile
-// operands keep the operation between the mode changes.
-template <class B> B directed(const B x, const B y, const int mode, const bool quotient = false) {
+// x y (or x / y, x + y) rounded by the FPU in `mode` (fesetround sets SSE's and the x87's
+// rounding alike): the independent reference for the emulated directed rounding below. The
+// volatile operands keep the operation between the mode changes.
+template <class B> B directed(const B x, const B y, const int mode, const char op) {
   const int old = std::fegetround();
   std::fesetround(mode);
   volatile B a = x, b = y;
-  volatile B r = quotient ? a / b : a * b;
+  volatile B r = op == '/' ? a / b : op == '+' ? a + b : a * b;
   std::fesetround(old);
   return r;
 }
 
-// Emulated bounds [down, up] of x y (or x / y) against the FPU's directed roundings: the same
-// where the emulation is tight, at most one value further out elsewhere.
-template <class B> void expect_directed(const B x, const B y, const bool quotient, const B down, const B up, const bool tight) {
-  const B fpu_down = directed(x, y, FE_DOWNWARD, quotient), fpu_up = directed(x, y, FE_UPWARD, quotient);
+// Emulated bounds [down, up] of x op y against the FPU's directed roundings: the same where the
+// emulation is tight, at most one value further out elsewhere.
+template <class B> void expect_directed(const B x, const B y, const char op, const B down, const B up, const bool tight) {
+  const B fpu_down = directed(x, y, FE_DOWNWARD, op), fpu_up = directed(x, y, FE_UPWARD, op);
   std::ostringstream what;
-  what << static_cast<double>(x) << (quotient ? " / " : " * ") << static_cast<double>(y);
+  what << std::setprecision(21) << static_cast<long double>(x) << ' ' << op << ' ' << static_cast<long double>(y);
   if (tight) {
     ASSERT_EQ(down, fpu_down) << what.str();
     ASSERT_EQ(up, fpu_up) << what.str();
@@ -128,9 +129,16 @@ template <class B> B random_binade_value(std::mt19937_64& rng, int lo_exp, int h
   return std::ldexp(m, lo_exp + static_cast<int>(rng() % static_cast<std::uint64_t>(hi_exp - lo_exp + 1)));
 }
 
+// The same with a random sign.
+template <class B> B random_signed_value(std::mt19937_64& rng, int lo_exp, int hi_exp) {
+  const B v = random_binade_value<B>(rng, lo_exp, hi_exp);
+  return rng() % 2 ? v : B(-v);
+}
+
 // Interval products round each bound outward in round-to-nearest arithmetic (interval.hpp's
-// Rounding: the product's error sign from a fused multiply-add in double, from the significands'
-// integer product for two normal x87 long doubles, from Dekker's splitting otherwise). Where the
+// Rounding: the product's error sign from a fused multiply-add in double, from the product in
+// double for float, from the significands' integer product for two normal x87 long doubles, from
+// Dekker's splitting otherwise). Where the
 // product is an ordinary number they must be exactly the FPU's directed roundings; near
 // underflow and overflow, where they widen by a value instead, at most one value further out.
 // Factors: random significands over many binades with both signs, small integers (exact
@@ -139,10 +147,7 @@ template <class B> void check_products_round_as_the_fpu_does(std::uint64_t seed)
   using R = pge::detail::Rounding<B>;
   std::mt19937_64 rng(seed);
   const int max_exp = std::numeric_limits<B>::max_exponent;
-  const auto random_value = [&](int lo_exp, int hi_exp) {
-    const B v = random_binade_value<B>(rng, lo_exp, hi_exp);
-    return rng() % 2 ? v : B(-v);
-  };
+  const auto random_value = [&](int lo_exp, int hi_exp) { return random_signed_value<B>(rng, lo_exp, hi_exp); };
   long ordinary = 0, exact = 0, edge = 0;
   const auto check = [&](const B x, const B y) {
     const B down = R::mul_down(x, y), up = R::mul_up(x, y);
@@ -150,12 +155,12 @@ template <class B> void check_products_round_as_the_fpu_does(std::uint64_t seed)
     ordinary += tight;
     edge += !tight;
     exact += tight && down == up;
-    expect_directed(x, y, false, down, up, tight);
+    expect_directed(x, y, '*', down, up, tight);
   };
   for (int i = 0; i < 200000; ++i) check(random_value(-60, 60), random_value(-60, 60));
   for (int i = 0; i < 50000; ++i) check(random_value(-max_exp + 8, max_exp - 8), random_value(-max_exp / 2, max_exp / 2));
   for (int i = 0; i < 20000; ++i) {  // one huge factor (Dekker could not split it) times a small one
-    const B huge = random_value(max_exp - 60, max_exp - 2), small = random_value(-max_exp + 60, -200);
+    const B huge = random_value(max_exp - 60, max_exp - 2), small = random_value(-max_exp + 60, std::max(-max_exp + 60, -200));
     check(huge, small);
   }
   for (int i = 0; i < 20000; ++i) {  // subnormal and smallest normal factors, products near underflow
@@ -174,8 +179,62 @@ template <class B> void check_products_round_as_the_fpu_does(std::uint64_t seed)
 }
 
 TEST(RotationTrig, ProductsRoundOutwardAsTheFpuDoes) {
+  check_products_round_as_the_fpu_does<float>(4);
   check_products_round_as_the_fpu_does<double>(5);
   check_products_round_as_the_fpu_does<long double>(6);
+}
+
+// Interval sums (Rounding::add_down, add_up: the rounded sum stepped by its TwoSum error's sign,
+// in integers without a branch on it for float and double) round outward alike: exactly the
+// FPU's directed roundings where the sum is an ordinary number, at most one value further out
+// elsewhere. Addends: random significands over many binades with both signs, near
+// cancellations, sums next to powers of two on either side (where a step crosses into the next
+// binade), huge and tiny ones.
+template <class B> void check_sums_round_as_the_fpu_does(std::uint64_t seed) {
+  using R = pge::detail::Rounding<B>;
+  std::mt19937_64 rng(seed);
+  const int max_exp = std::numeric_limits<B>::max_exponent, min_exp = std::numeric_limits<B>::min_exponent;
+  const B eps = std::numeric_limits<B>::epsilon();
+  const auto random_value = [&](int lo_exp, int hi_exp) { return random_signed_value<B>(rng, lo_exp, hi_exp); };
+  long ordinary = 0, exact = 0, inexact = 0;  // inexact: one bound stepped from the rounded sum
+  const auto check = [&](const B x, const B y) {
+    const B down = R::add_down(x, y), up = R::add_up(x, y);
+    const bool tight = R::ordinary(x + y);
+    ordinary += tight;
+    exact += tight && down == up;
+    inexact += tight && down != up;
+    expect_directed(x, y, '+', down, up, tight);
+  };
+  for (int i = 0; i < 100000; ++i) check(random_value(-60, 60), random_value(-60, 60));
+  for (int i = 0; i < 20000; ++i) check(random_value(-max_exp + 8, max_exp - 8), random_value(-max_exp + 8, max_exp - 8));
+  for (int i = 0; i < 20000; ++i) {  // near cancellation: x and about -x
+    const B x = random_value(-60, 60);
+    check(x, B(-x) * (B(1) + B(static_cast<int>(rng() % 64) - 32) * eps));
+  }
+  for (int e = -80; e <= 80; ++e) {  // next to powers of two, from below and above, both signs
+    const B p = std::ldexp(B(1), e);
+    for (int k = 1; k < 64; ++k)
+      for (const B sign : {B(1), B(-1)}) {
+        const B small = std::ldexp(B(1) + B(k) / B(64), e - std::numeric_limits<B>::digits - static_cast<int>(rng() % 3));
+        check(sign * p, sign * small);
+        check(sign * p, B(-sign) * small);
+        check(sign * std::nextafter(p, B(0)), sign * small);
+        check(sign * std::nextafter(p, B(2) * p), B(-sign) * small);
+      }
+  }
+  for (int i = 0; i < 10000; ++i) {  // near underflow and overflow, where the bounds widen by a value
+    check(std::ldexp(random_value(0, 0), min_exp - 1 - static_cast<int>(rng() % 40)), random_value(min_exp - 20, min_exp + 60));
+    check(random_value(max_exp - 4, max_exp - 1), random_value(max_exp - 60, max_exp - 1));
+  }
+  EXPECT_GT(ordinary, 150000);
+  EXPECT_GT(exact, 5000);
+  EXPECT_GT(inexact, 50000);
+}
+
+TEST(RotationTrig, SumsRoundOutwardAsTheFpuDoes) {
+  check_sums_round_as_the_fpu_does<float>(1);
+  check_sums_round_as_the_fpu_does<double>(2);
+  check_sums_round_as_the_fpu_does<long double>(3);
 }
 
 // Quotients by a positive value (Rounding::div_down, div_up: the error's sign as that of r d - a)
@@ -198,7 +257,7 @@ template <class B> void check_quotients_round_as_the_fpu_does(std::uint64_t seed
     const bool tight = R::ordinary(a / d) && R::ordinary(a) && R::splittable(a / d, d);
     ordinary += tight;
     edge += !tight;
-    expect_directed(a, d, true, R::div_down(a, d), R::div_up(a, d), tight);
+    expect_directed(a, d, '/', R::div_down(a, d), R::div_up(a, d), tight);
   };
   const auto sign = [&](const B v) { return rng() % 2 ? v : B(-v); };
   for (int i = 0; i < 100000; ++i) check(sign(value(-60, 60)), value(-60, 60));
