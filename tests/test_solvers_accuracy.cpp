@@ -300,7 +300,9 @@ TYPED_TEST(SolverAccuracy, RandomCollisionPolynomials) {
 // Certified's quick path (roots_certified.hpp, quick_earliest_root) decides the common case from
 // robust's candidate and cheap proofs. Whatever it decides must be the referee's answer: no root,
 // or the earliest downward root correctly rounded (never the overlap rule: it proves p(lo) > 0).
-// It must also decide most random cases, or certified pays for its walk after all.
+// It must also decide nearly all random cases, or certified pays for its walk after all (the walk
+// costs about four times the quick path: on random double quartics 280 of 4,096 left to it cost
+// certified 1.6x robust's time, 11 of 4,096 1.46x, bench_solvers).
 TYPED_TEST(SolverAccuracy, QuickPathAgreesWithReferee) {
   using T = TypeParam;
   std::size_t decided = 0, random_seen = 0;
@@ -327,7 +329,8 @@ TYPED_TEST(SolverAccuracy, QuickPathAgreesWithReferee) {
       }
     }
   }
-  EXPECT_GT(decided, random_seen * 3 / 4) << "the quick path should decide most random cases";
+  EXPECT_GT(decided, random_seen * 99 / 100) << "the quick path should decide nearly all random cases: " << decided
+                                             << " of " << random_seen;
 }
 
 // Roots within a tiny fraction of an ulp of a midpoint of T, where a wrong sign at the midpoint
