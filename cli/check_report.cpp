@@ -140,7 +140,8 @@ std::string pair_text(const Scene& s, BodyIndex a, BodyIndex b) {
   return fmt::format("\"{}\"-\"{}\"", id_of(s, a), id_of(s, b));
 }
 
-EventRecord make_record(std::uint64_t index, double time, const oracle::ExactEvent& e, const oracle::Judgement& j) {
+EventRecord make_record(std::uint64_t index, double time, const oracle::ExactEvent& e, const oracle::Judgement& j,
+                        bool decimals) {
   EventRecord r;
   r.index = index;
   r.time = time;
@@ -153,11 +154,12 @@ EventRecord make_record(std::uint64_t index, double time, const oracle::ExactEve
   r.has_exact_time = j.pair_time.has_value();
   // 20 decimals: beyond double's resolution for times below 10^4 s, cheap to refine to.
   constexpr int kDecimals = 20;
-  if (j.pair_time) r.exact_time = j.pair_time->decimal(kDecimals);
+  if (j.pair_time && (decimals || oracle::is_failure(j.verdict))) r.exact_time = j.pair_time->decimal(kDecimals);
   r.ulps = j.ulps;
   r.relative_error = j.relative_error;
   r.features_match = j.features_match;
-  for (const oracle::PairContact& p : j.earliest) r.earliest.push_back({p.a, p.b});
+  if (j.verdict != oracle::Verdict::Agree)
+    for (const oracle::PairContact& p : j.earliest) r.earliest.push_back({p.a, p.b});
   const oracle::Conservation& k = j.conservation;
   r.elastic = k.elastic && e.impulse;
   r.both_moving = k.both_moving && e.impulse;

@@ -38,7 +38,7 @@ SceneCheck as_check(const LoadedScene& loaded, const Trace& trace, const oracle:
   c.time = trace.end ? trace.end->t : (trace.collisions.empty() ? 0.0 : trace.collisions.back().t);
   if (trace.end && trace.end->reached_until) c.horizon = trace.end->t;
   for (const oracle::EventVerdict& v : j.events) {
-    EventRecord r = make_record(v.index, v.t, v.event, v.judgement);
+    EventRecord r = make_record(v.index, v.t, v.event, v.judgement, true);
     if (trace.collisions[v.index].contact.empty()) {  // features not named: not judged
       r.features_match = true;
       r.gap = std::numeric_limits<double>::quiet_NaN();

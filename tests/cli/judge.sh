@@ -24,7 +24,11 @@ same_as_check() {  # scene solver max_events judge's_exit_code
 import json, sys
 judged = json.load(open(sys.argv[1]))["result"]["events"]
 checked = json.load(open(sys.argv[2]))["scenes"][0]["events"]
-key = lambda e: (e["index"], e["a"], e["b"], e["verdict"], e.get("ulps"))
+# Every event's exact time too: pge check writes it for every event of its JSON (and only there
+# and in a failure's line: make_record's decimals).
+key = lambda e: (e["index"], e["a"], e["b"], e["verdict"], e.get("ulps"), e.get("exact_time"))
+if any("ulps" in e and not e.get("exact_time") for e in checked):
+    sys.exit(f"FAIL: {sys.argv[3]}: pge check's JSON has a timed event without its exact time")
 if [key(e) for e in judged] != [key(e) for e in checked]:
     for j, c in zip(judged, checked):
         if key(j) != key(c): print("first difference:", key(j), key(c)); break
@@ -35,6 +39,11 @@ PY
 }
 same_as_check "$scenes/basics/head-on.json" robust 100 0
 same_as_check "$scenes/simultaneous/pool-break.json" fast 300 7
+# A failure's line names the pair's exact time in 20 decimals (make_record writes them for
+# failures even without --json): fast's pool break has a phantom whose pair touches later.
+"$pge" check "$scenes/simultaneous/pool-break.json" --solver fast --max-events 300 > "$dir/failures" 2>&1 || true
+grep -Eq 'FAILED: phantom .*touches only at [0-9]+\.[0-9]{20}$' "$dir/failures" ||
+  { echo "FAIL: pge check prints no failure line with the exact time in decimals: $(grep FAILED "$dir/failures")"; exit 1; }
 # Rotating bodies (issue 26): the trace's reference points, angles and angular velocities give the
 # referee pge check's paths. A spinning box sliding into a wall and back; the twelve spinning
 # boxes, two of them with their reference point at a corner (not the pivot they turn about).
