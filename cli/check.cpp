@@ -124,8 +124,9 @@ SceneCheck check_scene(const LoadedScene& loaded, const Expect& expect, SolverKi
     // growing by doubling copied them and faulted in fresh pages at every step.
     const std::uint64_t most = opt.max_events ? opt.max_events : loaded.scene.run.max_events;
     c.events.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(most, 1u << 16)));
-    oracle::follow(world, *referee, [&c, &observe, &world, decimals](const CollisionInfo<T>& info, const oracle::ExactEvent& e,
-                                                                     const oracle::Judgement& j) {
+    oracle::follow(world, *referee,
+                   [&c, &observe, &world, decimals](const CollisionInfo<T>& info, const oracle::ExactEvent& e,
+                                                    const oracle::Judgement& j) {
       c.events.push_back(make_record(c.events.size(), to_double(info.time), e, j, decimals));
       c.events.back().rotating = world.rotates(info.a) || world.rotates(info.b);
       observe(info);

@@ -130,7 +130,8 @@ inline auto World<T>::Impl::search_rotating(BodyIndex lo, BodyIndex hi, const T&
   const Kinematics<T> ka = kinematics(bodies[lo], from), kb = kinematics(bodies[hi], from);
   const Vec2<T> dv = kb.v - ka.v;
   const T speed = sqrt(dot(dv, dv)) + abs(sa.path.omega) * sa.reach + abs(sb.path.omega) * sb.reach;
-  const T span = T(solver == SolverKind::Fast ? kFastRotatingWindowReaches : kRotatingWindowReaches) * (sa.reach + sb.reach);
+  const double reaches = solver == SolverKind::Fast ? kFastRotatingWindowReaches : kRotatingWindowReaches;
+  const T span = T(reaches) * (sa.reach + sb.reach);
   T end = speed > T(0) && span / speed < wanted - from ? from + span / speed : wanted;
   if (!(end > from)) end = std::min(wanted, detail::interval_next_up(from));  // progress, however late the clock
   detail::RotatingOptions options;

@@ -211,8 +211,8 @@ template <class B> class RotatingPairPredictor {
   // each body's |omega| times its reach), while that distance is more than 1/1024 of the
   // reaches' sum; then the feature searches take over. (On the 1,000-polygon spinning gas,
   // bench_scale spinning_polygons/1000 with a window of half a reach, 2026-12-07: 1/1024 ran
-  // 2,510-2,560 events/s, 1/64 2,210-2,270, 1/16384 1,870-2,370.) Each step costs one enclosure of both
-  // shapes (one sin/cos each), where a feature search over a long window costs hundreds of boxes
+  // 2,510-2,560 events/s, 1/64 2,210-2,270, 1/16384 1,870-2,370.) Each step costs one enclosure
+  // of both shapes (one sin/cos each), where a feature search over a long window costs hundreds of boxes
   // of several sin/cos each: most pairs of a gas are proven apart until the owner's next event in
   // a few steps (the window's end, which the caller caps there). The distance is a lower bound:
   // the largest separation of the two outlines along any edge normal of either (a projection),

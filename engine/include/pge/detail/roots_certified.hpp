@@ -179,6 +179,10 @@ template <class T> bool falls_where_not_positive(const Poly<T>& p, const T& a, c
 
 enum class Quick { None, Root, Undecided };
 
+// The midpoint of two values of T in W, where the midpoint of adjacent values is exact (the
+// point whose sign decides a rounding to T).
+template <class W, class T> W midpoint_in(const T& a, const T& b) { return (W(a) + W(b)) / W(2); }
+
 // Decides the common prediction without the derivatives' structure (Certifier): robust's walk in T
 // proposes the answer, and it is proved thus. None: p(hi) > 0 and p falls wherever it is not
 // positive on [lo, hi], so p never reaches zero there. Root x: x- < x < x+ its neighbours in T,
@@ -223,13 +227,13 @@ template <class T> Quick quick_earliest_root(const Poly<T>& p, const T& lo, cons
     return s;
   };
   auto sign_between = [&](const T& a, const T& b) {
-    const W mid = (W(a) + W(b)) / W(2);
+    const W mid = midpoint_in<W>(a, b);
     return again(wide_sign_of(p, 0, mid), mid);
   };
   if (!(x > lo && x < hi)) return Quick::Undecided;
   T up = interval_next_up(x), down = interval_next_down(x);
   int s_up = 0, s_down = 0;
-  const W mid_up = (W(x) + W(up)) / W(2), mid_down = (W(down) + W(x)) / W(2);
+  const W mid_up = midpoint_in<W>(x, up), mid_down = midpoint_in<W>(down, x);
   wide_signs_of(p, mid_up, mid_down, s_up, s_down);
   s_up = again(s_up, mid_up);
   s_down = again(s_down, mid_down);
@@ -286,7 +290,7 @@ template <class T> class Certifier {
   // The sign of p^(k) at the exact midpoint of a and b.
   int sign_at_midpoint(const T& a, const T& b, int k = 0) {
     using W = typename Wider<T>::type;
-    const int s = wide_sign(k, (W(a) + W(b)) / W(2));
+    const int s = wide_sign(k, midpoint_in<W>(a, b));
     if (s != 2) return s;
     return exact::sign_at(exact_poly(k), exact::midpoint(exact::to_dyadic(a), exact::to_dyadic(b)));
   }
