@@ -230,8 +230,9 @@ TEST(OracleInterval, ProductEnclosesTheFourExactCornerProductsAndNoMore) {
 }
 
 // The spatial filter unit by unit, against contact times from the mathematics. A pair bound of
-// two discs is the first root of a lower bound of their gap along the line of centres; the
-// filter keeps each body's path from `now` until the body moves (SpatialFilter::moved).
+// two discs is the first root of a lower bound of their squared distance (on straight paths) or
+// of their gap along the line of centres (accelerating); the filter keeps each body's path from
+// `now` until the body moves (SpatialFilter::moved).
 bool has_pair(const std::vector<detail::BodyPair>& pairs, BodyIndex a, BodyIndex b) {
   return std::find(pairs.begin(), pairs.end(), detail::BodyPair{a, b}) != pairs.end();
 }
@@ -251,26 +252,51 @@ TEST(OracleSpatialFilter, DiscBoundsAreTheContactTimesOfTheMathematics) {
   EXPECT_FALSE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(0.625)), 2, 3));
 }
 
-TEST(OracleSpatialFilter, ABodyThatMovedIsBoundOnItsNewPath) {
-  // a and b collide at t = 1/2 (gap 1 closing at 2) and swap velocities, in the referee's order:
-  // a's new motion first (its pairs are made while b is still on its old path, towards a), then
-  // b's. b then closes on c at 1 m/s from a gap of 3/2: contact at t = 2. A filter that kept b's
-  // old path (moving away from c) would vouch for b and c past 2.
+TEST(OracleSpatialFilter, StraightDiscsAreBoundByTheirDistance) {
+  // a and b (radius 1/2) pass each other on the diagonals y = x and y = x - 2, closing at
+  // (2, 2) from (8, 6) apart: their distance is never below |8 - 6| / sqrt(2) = 1.41 > 1, so no
+  // window lists them (along the line of centres at t = 0 the gap 10 - 2.8 t - 1 closes at
+  // t = 3.2, and their boxes over a long window overlap).
+  // c and d (radius 1/2) on lines 1/2 apart, closing at 1 m/s from 8 apart: |D|^2 =
+  // (8 - t)^2 + 1/4 reaches 1 at t = 8 - sqrt(3/4) = 7.1339746... (the contact: in the window
+  // up to 7.14 and not in the one up to 7.13; the line of centres at t = 0 closes at 7.03).
   std::vector<detail::BodyModel<detail::Interval>> m;
-  m.push_back(detail::interval_model(moving_circle(0.5, {0, 0}, {1, 0})));
-  m.push_back(detail::interval_model(moving_circle(0.5, {2, 0}, {-1, 0})));
-  m.push_back(detail::interval_model(moving_circle(0.5, {4, 0}, {0, 0})));
+  m.push_back(detail::interval_model(moving_circle(0.5, {0, 0}, {1, 1})));
+  m.push_back(detail::interval_model(moving_circle(0.5, {8, 6}, {-1, -1})));
+  m.push_back(detail::interval_model(moving_circle(0.5, {0, 10000}, {0.5, 0})));
+  m.push_back(detail::interval_model(moving_circle(0.5, {8, 10000.5}, {-0.5, 0})));
   detail::SpatialFilter f(m, Dyadic());
-  EXPECT_TRUE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(0.5)), 0, 1));
-  const Dyadic half = Dyadic::from(0.5);
-  detail::set_motion(m[0], motion({0.5, 0}, {-1, 0}, {}, 0.5));
-  f.moved(0, half);
-  detail::set_motion(m[1], motion({1.5, 0}, {1, 0}, {}, 0.5));
-  f.moved(1, half);
-  const std::vector<detail::BodyPair> to_contact = f.pairs_within(half, Dyadic::from(1.5));
-  EXPECT_TRUE(has_pair(to_contact, 1, 2));
-  EXPECT_TRUE(has_pair(to_contact, 0, 1));  // touching at 1/2: no gap to vouch with
-  EXPECT_FALSE(has_pair(f.pairs_within(half, Dyadic::from(1.25)), 1, 2));  // apart until 2
+  EXPECT_FALSE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(1000.0)), 0, 1));
+  EXPECT_TRUE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(7.14)), 2, 3));
+  EXPECT_FALSE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(7.13)), 2, 3));
+}
+
+TEST(OracleSpatialFilter, ABodyThatMovedIsBoundOnItsNewPath) {
+  // a and b collide at t = 1/2 (gap 1 closing at 2) and swap velocities. b then closes on c at
+  // 1 m/s from a gap of 3/2: contact at t = 2. A filter that kept b's old path (moving away from
+  // c) would vouch for b and c past 2. Told of both at once (the referee's way: both models
+  // hold their new motions first), and one at a time (a's pairs made while b is still on its
+  // old path, towards a).
+  for (const bool together : {true, false}) {
+    SCOPED_TRACE(together ? "both at once" : "one at a time");
+    std::vector<detail::BodyModel<detail::Interval>> m;
+    m.push_back(detail::interval_model(moving_circle(0.5, {0, 0}, {1, 0})));
+    m.push_back(detail::interval_model(moving_circle(0.5, {2, 0}, {-1, 0})));
+    m.push_back(detail::interval_model(moving_circle(0.5, {4, 0}, {0, 0})));
+    detail::SpatialFilter f(m, Dyadic());
+    EXPECT_TRUE(has_pair(f.pairs_within(Dyadic(), Dyadic::from(0.5)), 0, 1));
+    const Dyadic half = Dyadic::from(0.5);
+    const BodyIndex a[1] = {0}, b[1] = {1}, both[2] = {0, 1};
+    detail::set_motion(m[0], motion({0.5, 0}, {-1, 0}, {}, 0.5));
+    if (!together) f.moved(a, half);
+    detail::set_motion(m[1], motion({1.5, 0}, {1, 0}, {}, 0.5));
+    if (together) f.moved(both, half);
+    else f.moved(b, half);
+    const std::vector<detail::BodyPair> to_contact = f.pairs_within(half, Dyadic::from(1.5));
+    EXPECT_TRUE(has_pair(to_contact, 1, 2));
+    EXPECT_TRUE(has_pair(to_contact, 0, 1));  // touching at 1/2: no gap to vouch with
+    EXPECT_FALSE(has_pair(f.pairs_within(half, Dyadic::from(1.25)), 1, 2));  // apart until 2
+  }
 }
 
 // Every scene in fixtures/scenes and fixtures/regressions, judged event by event by three

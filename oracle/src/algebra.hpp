@@ -5,8 +5,18 @@
 
 #include <array>
 #include <stdexcept>
+#include <utility>
+
+namespace pge::oracle {
+class Dyadic;
+}
 
 namespace pge::oracle::detail {
+
+class Interval;
+// Whether x is exactly zero (model.hpp defines them).
+inline bool is_exact_zero(const Dyadic& x);
+inline bool is_exact_zero(const Interval& x);
 
 template <class N> struct V2 {
   N x{}, y{};
@@ -38,18 +48,36 @@ template <class N> Poly<N> operator+(const Poly<N>& a, const Poly<N>& b) {
   return r;
 }
 
+// Each coefficient written once, not copied first: Dyadic's are big numbers, and every copy is
+// an allocation (the values are the same).
 template <class N> Poly<N> operator-(const Poly<N>& a) {
-  Poly<N> r = a;
+  Poly<N> r;
+  r.deg = a.deg;
   for (int k = 0; k <= r.deg; ++k) r.c[k] = -a.c[k];
   return r;
 }
 
-template <class N> Poly<N> operator-(const Poly<N>& a, const Poly<N>& b) { return a + (-b); }
+template <class N> Poly<N> operator-(const Poly<N>& a, const Poly<N>& b) {
+  Poly<N> r;
+  r.deg = a.deg > b.deg ? a.deg : b.deg;
+  for (int k = 0; k <= r.deg; ++k)
+    r.c[k] = k > b.deg ? a.c[k] : (k > a.deg ? -b.c[k] : a.c[k] - b.c[k]);  // a - b is a + (-b), exactly
+  return r;
+}
 
 template <class N> Poly<N> operator*(const Poly<N>& a, const N& s) {
-  Poly<N> r = a;
+  Poly<N> r;
+  r.deg = a.deg;
   for (int k = 0; k <= r.deg; ++k) r.c[k] = a.c[k] * s;
   return r;
+}
+
+// acc + term into acc, skipping a sum with an exact zero (adding zero is exact in both number
+// types: the same value, without a copy).
+template <class N> void accumulate(N& acc, N&& term) {
+  if (is_exact_zero(term)) return;
+  if (is_exact_zero(acc)) acc = std::move(term);
+  else acc = acc + term;
 }
 
 template <class N> Poly<N> operator*(const Poly<N>& a, const Poly<N>& b) {
@@ -57,7 +85,7 @@ template <class N> Poly<N> operator*(const Poly<N>& a, const Poly<N>& b) {
   Poly<N> r;
   r.deg = a.deg + b.deg;
   for (int i = 0; i <= a.deg; ++i)
-    for (int j = 0; j <= b.deg; ++j) r.c[i + j] = r.c[i + j] + a.c[i] * b.c[j];
+    for (int j = 0; j <= b.deg; ++j) accumulate(r.c[i + j], a.c[i] * b.c[j]);
   return r;
 }
 
@@ -84,9 +112,13 @@ template <class N> PointPath<N> operator-(const PointPath<N>& a, const PointPath
 template <class N> PointPath<N> constant_path(const V2<N>& p) { return {Poly<N>::constant(p.x), Poly<N>::constant(p.y)}; }
 
 template <class N> PointPath<N> shifted(const PointPath<N>& a, const V2<N>& offset) {
-  PointPath<N> r = a;
-  r.x.c[0] = r.x.c[0] + offset.x;
-  r.y.c[0] = r.y.c[0] + offset.y;
+  PointPath<N> r;
+  r.x.deg = a.x.deg;
+  r.y.deg = a.y.deg;
+  r.x.c[0] = a.x.c[0] + offset.x;
+  r.y.c[0] = a.y.c[0] + offset.y;
+  for (int k = 1; k <= a.x.deg; ++k) r.x.c[k] = a.x.c[k];
+  for (int k = 1; k <= a.y.deg; ++k) r.y.c[k] = a.y.c[k];
   return r;
 }
 

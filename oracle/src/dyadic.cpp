@@ -1,6 +1,7 @@
 #include "pge/oracle_exact.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace pge::oracle {
 
@@ -28,24 +29,33 @@ Dyadic Dyadic::scaled(long k) const {
   return r;
 }
 
+// In place on the copy: one allocation, not a copy and a temporary.
 Dyadic Dyadic::abs() const {
   Dyadic r = *this;
-  r.m_ = ::abs(r.m_);
+  mpz_abs(r.m_.get_mpz_t(), r.m_.get_mpz_t());
   return r;
 }
 
 Dyadic Dyadic::operator-() const {
   Dyadic r = *this;
-  r.m_ = -r.m_;
+  mpz_neg(r.m_.get_mpz_t(), r.m_.get_mpz_t());
   return r;
 }
 
 namespace {
 
 // a + sign * b, exactly: the operand with the larger exponent is shifted onto the other's grid
-// in place of the result (one allocation, not a copy and a shift of each).
+// in place of the result (one allocation, not a copy and a shift of each). The result is given
+// its limbs for the sum first (the shifted operand's, one for the shift's carry and one for the
+// sum's), so that neither the shift nor the addition grows it again.
 void add_into(mpz_class& r, long& e, const Dyadic& a, const Dyadic& b, int sign) {
-  if (a.exponent() >= b.exponent()) {
+  const auto limbs = [](const Dyadic& x) { return mpz_size(x.mantissa().get_mpz_t()); };
+  const bool a_shifts = a.exponent() >= b.exponent();
+  const std::size_t shift_limbs = static_cast<std::size_t>(std::abs(a.exponent() - b.exponent())) / GMP_NUMB_BITS;
+  const std::size_t shifted = (a_shifts ? limbs(a) : limbs(b)) + shift_limbs + 1;
+  const std::size_t other = a_shifts ? limbs(b) : limbs(a);
+  mpz_realloc2(r.get_mpz_t(), (std::max(shifted, other) + 1) * GMP_NUMB_BITS);
+  if (a_shifts) {
     mpz_mul_2exp(r.get_mpz_t(), a.mantissa().get_mpz_t(), static_cast<mp_bitcnt_t>(a.exponent() - b.exponent()));
     (sign > 0 ? mpz_add : mpz_sub)(r.get_mpz_t(), r.get_mpz_t(), b.mantissa().get_mpz_t());
     e = b.exponent();

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 
 namespace pge::oracle {
 
@@ -137,17 +138,22 @@ struct Referee::Impl {
 
   void advance(const ExactEvent& e, const ExactMotion& a_after, const ExactMotion& b_after) {
     state.now = std::max(state.now, e.time);
-    const std::pair<BodyIndex, const ExactMotion*> updates[2] = {{e.a, &a_after}, {e.b, &b_after}};
-    for (const auto& [i, m] : updates) set_body_motion(i, *m);
+    set_body_motions({{e.a, &a_after}, {e.b, &b_after}});
   }
 
-  // Body i continues on `motion` from the state's time on.
-  void set_body_motion(BodyIndex i, const ExactMotion& motion) {
-    if (state.bodies[i].fixed) return;
-    state.bodies[i].motion = motion;
-    set_motion(exact[i], motion);
-    set_motion(interval[i], motion);
-    if (spatial) spatial->moved(i, state.now);
+  // Bodies continue on new motions from the state's time on. The filter hears of them together
+  // once every model holds its new motion: a pair of them gets one bound, from both new paths.
+  void set_body_motions(std::initializer_list<std::pair<BodyIndex, const ExactMotion*>> updates) {
+    BodyIndex changed[2];
+    std::size_t n = 0;
+    for (const auto& [i, motion] : updates) {
+      if (state.bodies[i].fixed) continue;
+      state.bodies[i].motion = *motion;
+      set_motion(exact[i], *motion);
+      set_motion(interval[i], *motion);
+      changed[n++] = i;
+    }
+    if (spatial) spatial->moved({changed, n}, state.now);
   }
 };
 
@@ -264,7 +270,7 @@ EndJudgement Referee::take_motion(BodyIndex i, const ExactMotion& motion, const 
     }
   }
   m.state.now = std::max(m.state.now, time);
-  m.set_body_motion(i, motion);
+  m.set_body_motions({{i, &motion}});
   m.stats.seconds += std::chrono::duration<double>(Clock::now() - start).count();
   return out;
 }

@@ -50,15 +50,18 @@ Poly<Interval> support(const Hull& h, double nx, double ny) {
 }
 
 // A gap g(tau) (an enclosure of it for each tau >= 0, degree <= 2) stays positive at least as
-// long as this (tau, a lower bound): g >= G - beta tau - alpha tau^2, positive before its first
-// root 2G / (beta + sqrt(beta^2 + 4 alpha G)), rounded towards zero here.
+// long as this (tau, a lower bound): g >= G - beta tau + gamma tau^2 with G = lo(g0) > 0, beta =
+// max(-lo(g1), 0) and gamma = lo(g2) of either sign, positive before its first root
+// 2G / (beta + sqrt(beta^2 - 4 gamma G)), rounded towards zero here, and for ever when nothing
+// closes it (beta = 0 and gamma >= 0) or when it has no root (beta^2 < 4 gamma G, certainly).
 double positive_for(const Poly<Interval>& g) {
   const double G = g.c[0].lo();
   if (!(G > 0)) return 0;
   const double beta = std::max(g.deg >= 1 ? -g.c[1].lo() : 0.0, 0.0);
-  const double alpha = std::max(g.deg >= 2 ? -g.c[2].lo() : 0.0, 0.0);
-  if (alpha == 0 && beta == 0) return kInf;
-  const double disc = (square(Interval(beta)) + Interval(4.0) * Interval(alpha) * Interval(G)).hi();
+  const double gamma = g.deg >= 2 ? g.c[2].lo() : 0.0;
+  if (beta == 0 && gamma >= 0) return kInf;
+  const double disc = (square(Interval(beta)) - Interval(4.0) * Interval(gamma) * Interval(G)).hi();
+  if (disc < 0) return kInf;
   const double den = (Interval(beta) + Interval(sqrt_up(disc))).hi();
   if (!(den > 0) || std::isnan(den)) return 0;
   const double q = next_down(G / den);  // below G / den: the quotient rounds by half an ulp at most
@@ -84,6 +87,28 @@ double discs_separated_for(const Hull& a, const Hull& b, double nx, double ny) {
   for (int k = 0; k <= g.deg; ++k)
     g.c[k] = (b.centre->x.c[k] - a.centre->x.c[k]) * n_x + (b.centre->y.c[k] - a.centre->y.c[k]) * n_y;
   g.c[0] = g.c[0] - (a.reach + b.reach) * Interval(norm_up(nx, ny));
+  return positive_for(g);
+}
+
+bool straight(const PointPath<Interval>& p) {
+  for (int k = 2; k <= std::max(p.x.deg, p.y.deg); ++k)
+    if (!is_exact_zero(p.x.c[k]) || !is_exact_zero(p.y.c[k])) return false;
+  return true;
+}
+
+// Two discs on straight paths: |D(tau)|^2 - (ra + rb)^2, with D = D0 + V tau the centres'
+// difference, is positive exactly while they are disjoint, and it is the quadratic
+// V.V tau^2 + 2 D0.V tau + D0.D0 - (ra + rb)^2. Its first root is the pair's contact (when
+// they meet at all): no axis fixed now can vouch for longer, and a pair that passes by without
+// meeting is vouched for until a motion changes.
+double straight_discs_apart_for(const Hull& a, const Hull& b) {
+  const Interval dx = b.centre->x.c[0] - a.centre->x.c[0], dy = b.centre->y.c[0] - a.centre->y.c[0];
+  const Interval vx = b.centre->x.c[1] - a.centre->x.c[1], vy = b.centre->y.c[1] - a.centre->y.c[1];
+  Poly<Interval> g;
+  g.deg = 2;
+  g.c[0] = square(dx) + square(dy) - square(a.reach + b.reach);
+  g.c[1] = Interval(2.0) * (dx * vx + dy * vy);
+  g.c[2] = square(vx) + square(vy);
   return positive_for(g);
 }
 
@@ -113,15 +138,19 @@ SpatialFilter::SpatialFilter(const std::vector<BodyModel<Interval>>& bodies, con
   for (BodyIndex i = 0; i < bodies.size(); ++i) make_entry(i, t, -kInf);
 }
 
-void SpatialFilter::moved(BodyIndex i, const Dyadic& now) {
+void SpatialFilter::moved(std::span<const BodyIndex> bodies, const Dyadic& now) {
   const Interval t = enclose_time(now);
-  // The mean time between changes of motion, an exponential running mean (only a speed matter).
-  if (const double dt = t.lo() - last_moved_[i]; dt > 0 && std::isfinite(dt))
-    free_time_ = free_time_ > 0 ? 0.98 * free_time_ + 0.02 * dt : dt;
-  last_moved_[i] = t.lo();
-  paths_[i].valid = false;
-  drop_entry(i);
-  make_entry(i, t, -kInf);
+  // Every body is dropped before any is made again: a pair of them is bounded once, when the
+  // second is made, from both new paths.
+  for (const BodyIndex i : bodies) {
+    // The mean time between changes of motion, an exponential running mean (only a speed matter).
+    if (const double dt = t.lo() - last_moved_[i]; dt > 0 && std::isfinite(dt))
+      free_time_ = free_time_ > 0 ? 0.98 * free_time_ + 0.02 * dt : dt;
+    last_moved_[i] = t.lo();
+    paths_[i].valid = false;
+    drop_entry(i);
+  }
+  for (const BodyIndex i : bodies) make_entry(i, t, -kInf);
 }
 
 std::vector<BodyPair> SpatialFilter::pairs_within(const Dyadic& now, const Dyadic& tau_hi) {
@@ -195,6 +224,7 @@ void SpatialFilter::make_entry(BodyIndex i, const Interval& now, double until) {
   const BodyModel<Interval>& b = bodies_[i];
   Entry& e = entries_[i];
   e.made = now.lo();
+  e.listed = true;
   ++e.version;
   Interval x, y;
   if (b.fixed) {
@@ -232,15 +262,15 @@ void SpatialFilter::make_entry(BodyIndex i, const Interval& now, double until) {
       for (std::int64_t cx = cx0; cx <= cx1; ++cx)
         for (std::int64_t cy = cy0; cy <= cy1; ++cy) {
           const std::uint64_t key = (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy & 0xffffffff);
-          e.cells.push_back(static_cast<std::int64_t>(key));
           std::vector<BodyIndex>& in = grid_[key];
+          e.cells.push_back(&in);
           near.insert(near.end(), in.begin(), in.end());
           in.push_back(i);
         }
   }
   if (e.wide) {
     for (BodyIndex j = 0; j < entries_.size(); ++j)
-      if (j != i && entries_[j].version > 0) near.push_back(j);
+      if (j != i && entries_[j].listed) near.push_back(j);
     wide_.push_back(i);
   } else {
     near.insert(near.end(), wide_.begin(), wide_.end());
@@ -263,13 +293,11 @@ void SpatialFilter::drop_entry(BodyIndex i) {
     back.erase(std::find(back.begin(), back.end(), i));
   }
   e.partners.clear();
-  for (std::int64_t c : e.cells) {
-    std::vector<BodyIndex>& in = grid_[static_cast<std::uint64_t>(c)];
-    in.erase(std::find(in.begin(), in.end(), i));
-  }
+  for (std::vector<BodyIndex>* in : e.cells) in->erase(std::find(in->begin(), in->end(), i));
   e.cells.clear();
   if (e.wide) wide_.erase(std::find(wide_.begin(), wide_.end(), i));
   e.wide = false;
+  e.listed = false;
 }
 
 void SpatialFilter::add_pair(BodyIndex i, BodyIndex j, const Interval& now) {
@@ -309,8 +337,10 @@ double SpatialFilter::pair_bound(BodyIndex i, BodyIndex j, const Interval& now) 
   const Hull a = hull_of(i), b = hull_of(j);
   double tau = 0;
   if (!a.outline && !b.outline) {
-    // Two discs: the axis through their centres now.
-    tau = discs_separated_for(a, b, mid(b.centre->x.c[0] - a.centre->x.c[0]), mid(b.centre->y.c[0] - a.centre->y.c[0]));
+    // Two discs: their distance when both paths are straight, else the axis through their
+    // centres now.
+    if (straight(*a.centre) && straight(*b.centre)) tau = straight_discs_apart_for(a, b);
+    else tau = discs_separated_for(a, b, mid(b.centre->x.c[0] - a.centre->x.c[0]), mid(b.centre->y.c[0] - a.centre->y.c[0]));
   } else {
     // A disc and a fixed outline: the outline's edge normals and the coordinate axes, both ways.
     const std::vector<V2<Interval>>& v = a.outline ? *a.vertices : *b.vertices;

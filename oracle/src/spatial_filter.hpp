@@ -14,20 +14,25 @@
 // How. Each body has a box that holds its shape over [t_made, until] (its exact path evaluated in
 // interval arithmetic over the whole time span), registered in the cells of a uniform grid. Two
 // bodies whose boxes are disjoint cannot meet before the earlier `until`; a search up to W first
-// remakes every box that ends before W. Pairs of bodies with overlapping boxes keep a bound T from
-// a separating axis n: the gap g(tau) = min over b of n.x - max over a of n.x is a quadratic in
-// tau with interval coefficients (a disc's support is n.c(tau) + R |n|, a fixed polygon's the
-// largest n.v over its vertices), g(tau) >= G - beta tau - alpha tau^2 with G = lo(g0) > 0,
-// beta = max(-lo(g1), 0), alpha = max(-lo(g2), 0), so the shapes are disjoint before the first
-// root 2G / (beta + sqrt(beta^2 + 4 alpha G)), computed rounding towards zero. A bound that the
-// search's window passes is remade from the current time (the gap is smaller then, but so is the
-// time left). Only the pairs of bodies whose motion changed, or whose box ends, are remade.
+// remakes every box that ends before W. Pairs of bodies with overlapping boxes keep a bound T.
+// For two discs on straight paths it is the first root of q(tau) = |D0 + V tau|^2 - R^2 (D the
+// centres' difference, R the reaches' sum), positive exactly while they are disjoint. For the
+// others it comes from a separating axis n: the gap g(tau) = min over b of n.x - max over a of
+// n.x is a quadratic in tau with interval coefficients (a disc's support is n.c(tau) + R |n|, a
+// fixed polygon's the largest n.v over its vertices). Either quadratic, with interval
+// coefficients, is at least G - beta tau + gamma tau^2 for tau >= 0, with G = lo(c0) > 0, beta =
+// max(-lo(c1), 0), gamma = lo(c2), so the shapes are disjoint before its first root
+// 2G / (beta + sqrt(beta^2 - 4 gamma G)), computed rounding towards zero, and for ever if it has
+// none (beta = 0 <= gamma, or beta^2 < 4 gamma G certainly). A bound that the search's window
+// passes is remade from the current time (the gap is smaller then, but so is the time left).
+// Only the pairs of bodies whose motion changed, or whose box ends, are remade.
 #pragma once
 
 #include "model.hpp"
 
 #include <cstdint>
 #include <queue>
+#include <span>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -61,8 +66,9 @@ class SpatialFilter {
   // The models must outlive the filter; their motions are read when a body is (re)made.
   SpatialFilter(const std::vector<BodyModel<Interval>>& bodies, const Dyadic& now);
 
-  // Body i's motion changed; `now` is the state's time from which the new motion holds.
-  void moved(BodyIndex i, const Dyadic& now);
+  // These bodies' motions changed (every model already holds its new one); `now` is the
+  // state's time from which the new motions hold.
+  void moved(std::span<const BodyIndex> bodies, const Dyadic& now);
 
   // Every pair (a < b, not both fixed) whose shapes may meet in [now, now + tau_hi], ascending:
   // a pair left out certainly has no contact there.
@@ -77,7 +83,9 @@ class SpatialFilter {
     double until = 0;  // the box holds the shape up to this time (an upper bound's lower bound)
     Box box;
     bool wide = false;  // too many cells (or unbounded): paired with every body instead
-    std::vector<std::int64_t> cells;
+    bool listed = false;  // in the grid or the wide list (made, and not dropped since)
+    // The grid's lists it is in (the map's elements never move, and are never erased).
+    std::vector<std::vector<BodyIndex>*> cells;
     std::vector<BodyIndex> partners;  // bodies with a pair bound kept
     std::uint64_t version = 0;
   };

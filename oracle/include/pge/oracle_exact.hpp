@@ -7,6 +7,7 @@
 
 #include <gmpxx.h>
 
+#include <bit>
 #include <cmath>
 #include <compare>
 #include <limits>
@@ -70,10 +71,13 @@ template <class T> Dyadic Dyadic::from(const T& x) {
                 std::numeric_limits<T>::digits <= std::numeric_limits<unsigned long>::digits) {
     // float, double, x87 long double: f * 2^digits is an integer below 2^digits (a subnormal's
     // significand has fewer bits), so scaling and converting it are exact.
+    // Its trailing zeros go to the exponent here, where they are one instruction to count.
     constexpr int kDigits = std::numeric_limits<T>::digits;
-    mpz_class m(static_cast<unsigned long>(ldexp(f, kDigits)));
+    const auto bits = static_cast<unsigned long>(ldexp(f, kDigits));
+    const int zeros = std::countr_zero(bits);
+    mpz_class m(bits >> zeros);
     if (negative) mpz_neg(m.get_mpz_t(), m.get_mpz_t());
-    return Dyadic(std::move(m), static_cast<long>(e) - kDigits);
+    return Dyadic(std::move(m), static_cast<long>(e) - kDigits + zeros);
   }
   mpz_class m = 0;
   long exponent = e;
