@@ -49,7 +49,8 @@ template <class N> Poly<N> operator+(const Poly<N>& a, const Poly<N>& b) {
 }
 
 // Each coefficient written once, not copied first: Dyadic's are big numbers, and every copy is
-// an allocation (the values are the same).
+// an allocation (the same values; an Interval coefficient past one operand's degree is that
+// operand's own, not its sum with a zero, which would widen it by an ulp).
 template <class N> Poly<N> operator-(const Poly<N>& a) {
   Poly<N> r;
   r.deg = a.deg;
@@ -72,8 +73,9 @@ template <class N> Poly<N> operator*(const Poly<N>& a, const N& s) {
   return r;
 }
 
-// acc + term into acc, skipping a sum with an exact zero (adding zero is exact in both number
-// types: the same value, without a copy).
+// acc + term into acc, skipping a sum with an exact zero: the same value for Dyadic, without a
+// copy; for Interval the exact sum itself, where the interval sum would widen it by an ulp
+// (interval.hpp widens every rounded bound), so an enclosure as rigorous and a little tighter.
 template <class N> void accumulate(N& acc, N&& term) {
   if (is_exact_zero(term)) return;
   if (is_exact_zero(acc)) acc = std::move(term);
