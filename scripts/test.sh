@@ -14,6 +14,6 @@ scripts/install-deps.sh
 # shellcheck disable=SC2086
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo ${PGE_CMAKE_ARGS:-}
 cmake --build "$build" -j "$jobs"
-# The "long" label (fixture_expectations_long: half an hour of judged 100,000-event runs) is
+# The "long" label (fixture_expectations_long: judged runs of up to 1,000,000 events, about 2.5 minutes) is
 # left out by default; run it with: ctest --test-dir build -L long
 ctest --test-dir "$build" --output-on-failure -j "$jobs" -LE "${PGE_CTEST_EXCLUDE:-long}"
